@@ -1,0 +1,40 @@
+# Two commands do everything on a fresh Debian 12 machine:
+#   make demo   install dependencies, build, run the sample case
+#   make test   install dependencies, build, run the test suite (what CI runs)
+BUILD     ?= build
+JOBS      ?= $(shell nproc)
+CTEST_ARGS ?= -LE bench-long
+PREFIX    ?= /usr/local
+
+.PHONY: all deps build test test-asan demo bench install clean
+
+all: build
+
+deps:
+	./scripts/install-deps
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+
+# The suite under AddressSanitizer and UndefinedBehaviorSanitizer, in its own build tree.
+test-asan: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DUGS_SANITIZE=ON
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) -LE "bench-long|no-asan"
+
+demo: build
+	$(MAKE) -C data-samples/po-plain demo UGS_BIN=$(abspath $(BUILD))/tools
+
+bench: build
+	./bench/run-all $(BUILD)
+
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
+clean:
+	rm -rf $(BUILD) build-asan

@@ -1,0 +1,86 @@
+// The case file (TOML): one file describes a model — materials, initial stress, pools and their
+// pressure schedules, boundary conditions, faults, solver and output settings. Schema and an
+// example for every key: docs/case-file.md. Unknown keys are errors.
+// Values are converted to SI on reading (MPa -> Pa, degrees stay degrees where named *_deg).
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ugs/formats/toml_reader.hpp"
+
+namespace ugs {
+
+enum class MaterialLaw {
+  Linear,       // constant E, nu (isotropic) or E_z with ratios (transversely isotropic)
+  ElasticDepth, // c_M from the compressibility law at the initial effective vertical stress
+  Hypoplastic,  // c_M from the law on virgin loading, c_M(sigma_max)/c_R on unloading/reloading
+};
+
+struct MaterialSpec {
+  std::string name;           // matches the mesh group mat:<name>
+  std::string where;          // file:line, for later error messages
+  MaterialLaw law = MaterialLaw::ElasticDepth;
+  double biot = 1.0;
+  // Transverse isotropy (eq. 3.22), vertical axis of symmetry.
+  double nu_z = 0.3, Eh_over_Ez = 1.0, nuh_over_nuz = 1.0, Gh_over_Gz = 1.0;
+  // Compressibility law c_M = a sigma_z^-b [1/MPa, sigma_z in MPa] and c_R.
+  double cm_a = 1.0044e-2, cm_b = 1.1347;
+  std::optional<double> c_R;
+  // Linear law: vertical Young's modulus [Pa] (E for isotropic).
+  std::optional<double> E_Pa;
+  // Flow: hydraulic conductivity [m/s] along x, y, z and porosity; absent for non-flow units.
+  std::optional<std::array<double, 3>> K;
+  std::optional<double> porosity;
+};
+
+struct PoolSpec {
+  std::string name;
+  std::string where;
+  std::vector<std::string> materials;  // materials whose nodes follow the schedule
+  std::string schedule;                // CSV path, resolved against the case file
+  std::string column = "p_norm";       // p_norm (normalized) or p_MPa
+  std::optional<double> reference_pressure_Pa;  // needed for normalized schedules
+};
+
+struct InitialStressSpec {
+  double surface_elevation = 0.0;         // m, where total stress and pore pressure vanish
+  double lithostatic_gradient = 0.0226e6; // Pa/m (total vertical stress)
+  double hydrostatic_gradient = 0.0100e6; // Pa/m (pore pressure)
+  double k0 = 1.0;                        // sigma'_h / sigma'_v
+};
+
+struct FaultSpec {
+  std::string name;
+  std::string where;
+  double cohesion_Pa = 0.0;
+  double friction_deg = 30.0;
+};
+
+struct CaseFile {
+  std::string path;
+  std::string crs;
+  std::string start_date, end_date;
+  double water_unit_weight = 9810.0;       // N/m3
+  double water_compressibility = 4.4e-10;  // 1/Pa
+  InitialStressSpec initial_stress;
+  std::vector<MaterialSpec> materials;
+  std::vector<PoolSpec> pools;
+  std::vector<std::string> fixed_boundaries{"west", "east", "south", "north", "bottom"};
+  std::vector<std::string> roller_boundaries;  // zero normal displacement only
+  std::vector<FaultSpec> faults;
+  // Solver settings (docs/case-file.md).
+  double newton_tolerance = 1e-8;
+  int max_newton_iterations = 25;
+  std::string linear_solver = "cg-gamg";        // cg-gamg | cg-hypre | mumps | cholmod
+  std::string inversion_rule = "sigma-max";     // sigma-max | sigma-inversion | stress-dependent
+  // Output dates (ISO 8601); empty means every schedule date.
+  std::vector<std::string> output_dates;
+
+  const MaterialSpec* material(const std::string& name) const;
+};
+
+CaseFile read_case_file(const std::string& path);
+
+}  // namespace ugs

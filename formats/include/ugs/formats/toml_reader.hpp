@@ -1,0 +1,58 @@
+// Strict reading of TOML input files (case files, stratigraphy files): typed getters that report
+// `file:line: key 'x': ...` as ugs::InputError, and unknown keys reported as errors rather than
+// silently ignored (a misspelt key must never fall back to a default).
+#pragma once
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml.hpp>
+
+#include "ugs/formats/error.hpp"
+
+namespace ugs {
+
+class TomlTable {
+public:
+  // Parses a file; syntax errors become InputError with the file and line.
+  static TomlTable parse_file(const std::string& path);
+
+  TomlTable(toml::value v, std::string file, std::string path_in_doc);
+
+  const std::string& file() const { return file_; }
+  // "file:line" of the table itself or of one of its keys.
+  std::string where() const;
+  std::string where(const std::string& key) const;
+  InputError error(const std::string& key, const std::string& message) const;
+
+  bool has(const std::string& key) const;
+  double number(const std::string& key) const;
+  std::optional<double> number_opt(const std::string& key) const;
+  double number_or(const std::string& key, double fallback) const { return number_opt(key).value_or(fallback); }
+  long long integer(const std::string& key) const;
+  std::optional<long long> integer_opt(const std::string& key) const;
+  std::string string(const std::string& key) const;
+  std::optional<std::string> string_opt(const std::string& key) const;
+  bool boolean_or(const std::string& key, bool fallback) const;
+  std::vector<double> numbers(const std::string& key) const;
+  std::vector<std::string> strings(const std::string& key) const;
+  std::optional<TomlTable> table_opt(const std::string& key) const;
+  TomlTable table(const std::string& key) const;
+  // An array of tables ([[name]]); empty if absent.
+  std::vector<TomlTable> tables(const std::string& key) const;
+
+  // Throws for the first key of this table not in `known` (after all getters were called).
+  void reject_unknown(const std::set<std::string>& known) const;
+  std::vector<std::string> keys() const;
+
+private:
+  const toml::value& at(const std::string& key) const;
+  toml::value v_;
+  std::string file_, path_;
+};
+
+// Resolves `relative` against the directory of `base_file` (absolute paths are returned as is).
+std::string resolve_relative(const std::string& base_file, const std::string& relative);
+
+}  // namespace ugs

@@ -1,0 +1,169 @@
+#include "ugs/formats/case_file.hpp"
+
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace ugs {
+namespace {
+
+constexpr double kMPa = 1e6;
+
+MaterialLaw parse_law(const TomlTable& t) {
+  const std::string s = t.string("law");
+  if (s == "linear") return MaterialLaw::Linear;
+  if (s == "elastic") return MaterialLaw::ElasticDepth;
+  if (s == "hypoplastic") return MaterialLaw::Hypoplastic;
+  throw t.error("law", fmt::format("'{}' is not one of linear, elastic, hypoplastic", s));
+}
+
+double positive(const TomlTable& t, const std::string& key, double v) {
+  if (!(v > 0) || !std::isfinite(v)) throw t.error(key, fmt::format("must be positive, got {}", v));
+  return v;
+}
+
+MaterialSpec parse_material(const TomlTable& t) {
+  t.reject_unknown({"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b",
+                    "c_R", "E_MPa", "K_m_per_s", "porosity"});
+  MaterialSpec m;
+  m.name = t.string("name");
+  m.where = t.where();
+  m.law = t.has("law") ? parse_law(t) : MaterialLaw::ElasticDepth;
+  m.biot = t.number_or("biot", 1.0);
+  if (m.biot < 0 || m.biot > 1) throw t.error("biot", "must lie in [0, 1]");
+  if (t.has("nu") && t.has("nu_z")) throw t.error("nu", "give either nu (isotropic) or nu_z, not both");
+  m.nu_z = t.has("nu") ? t.number("nu") : t.number_or("nu_z", 0.3);
+  const std::string nu_key = t.has("nu") ? "nu" : "nu_z";
+  if (!(m.nu_z > -1 && m.nu_z < 0.5)) throw t.error(nu_key, fmt::format("Poisson ratio {} outside (-1, 0.5)", m.nu_z));
+  m.Eh_over_Ez = positive(t, "Eh_over_Ez", t.number_or("Eh_over_Ez", 1.0));
+  m.nuh_over_nuz = t.number_or("nuh_over_nuz", 1.0);
+  const double nu_h = m.nu_z * m.nuh_over_nuz;
+  if (!(nu_h > -1 && nu_h < 1)) throw t.error("nuh_over_nuz", fmt::format("horizontal Poisson ratio {} outside (-1, 1)", nu_h));
+  m.Gh_over_Gz = positive(t, "Gh_over_Gz", t.number_or("Gh_over_Gz", 1.0));
+  m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2));
+  m.cm_b = t.number_or("cm_b", 1.1347);
+  if (t.has("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
+  if (t.has("E_MPa")) m.E_Pa = positive(t, "E_MPa", t.number("E_MPa")) * kMPa;
+  if (m.law == MaterialLaw::Linear && !m.E_Pa) throw t.error("E_MPa", "is required for law = \"linear\"");
+  if (m.law == MaterialLaw::Hypoplastic && !m.c_R) throw t.error("c_R", "is required for law = \"hypoplastic\"");
+  if (t.has("K_m_per_s")) {
+    const auto k = t.numbers("K_m_per_s");
+    if (k.size() != 3) throw t.error("K_m_per_s", "expected [Kx, Ky, Kz]");
+    for (double v : k)
+      if (!(v > 0)) throw t.error("K_m_per_s", "conductivities must be positive");
+    m.K = std::array<double, 3>{k[0], k[1], k[2]};
+  }
+  if (t.has("porosity")) {
+    const double n = t.number("porosity");
+    if (!(n > 0 && n < 1)) throw t.error("porosity", "must lie in (0, 1)");
+    m.porosity = n;
+  }
+  return m;
+}
+
+PoolSpec parse_pool(const TomlTable& t) {
+  t.reject_unknown({"name", "materials", "schedule", "column", "reference_pressure_MPa"});
+  PoolSpec p;
+  p.name = t.string("name");
+  p.where = t.where();
+  p.materials = t.strings("materials");
+  if (p.materials.empty()) throw t.error("materials", "needs at least one material");
+  p.schedule = resolve_relative(t.file(), t.string("schedule"));
+  p.column = t.has("column") ? t.string("column") : "p_norm";
+  if (p.column != "p_norm" && p.column != "p_MPa") throw t.error("column", "must be p_norm or p_MPa");
+  if (t.has("reference_pressure_MPa")) p.reference_pressure_Pa = positive(t, "reference_pressure_MPa", t.number("reference_pressure_MPa")) * kMPa;
+  if (p.column == "p_norm" && !p.reference_pressure_Pa)
+    throw t.error("reference_pressure_MPa", "is required for a normalized schedule (column = \"p_norm\")");
+  return p;
+}
+
+FaultSpec parse_fault(const TomlTable& t) {
+  t.reject_unknown({"name", "cohesion_MPa", "friction_deg"});
+  FaultSpec f;
+  f.name = t.string("name");
+  f.where = t.where();
+  f.cohesion_Pa = t.number_or("cohesion_MPa", 0.0) * kMPa;
+  if (f.cohesion_Pa < 0) throw t.error("cohesion_MPa", "must not be negative");
+  f.friction_deg = t.number_or("friction_deg", 30.0);
+  if (!(f.friction_deg > 0 && f.friction_deg < 90)) throw t.error("friction_deg", "must lie in (0, 90) degrees");
+  return f;
+}
+
+const std::set<std::string> kBoundaryNames{"west", "east", "south", "north", "bottom", "top"};
+
+std::vector<std::string> boundary_list(const TomlTable& t, const std::string& key) {
+  auto v = t.strings(key);
+  for (const auto& b : v)
+    if (!kBoundaryNames.count(b)) throw t.error(key, fmt::format("unknown boundary '{}' (west, east, south, north, bottom, top)", b));
+  return v;
+}
+
+}  // namespace
+
+const MaterialSpec* CaseFile::material(const std::string& name) const {
+  for (const auto& m : materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+CaseFile read_case_file(const std::string& path) {
+  const TomlTable root = TomlTable::parse_file(path);
+  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "fault", "solver", "output"});
+  CaseFile c;
+  c.path = path;
+  c.crs = root.string_opt("crs").value_or("");
+  if (auto m = root.table_opt("model")) {
+    m->reject_unknown({"name", "start", "end"});
+    c.start_date = m->string_opt("start").value_or("");
+    c.end_date = m->string_opt("end").value_or("");
+  }
+  if (auto w = root.table_opt("water")) {
+    w->reject_unknown({"unit_weight_N_per_m3", "compressibility_per_MPa"});
+    c.water_unit_weight = positive(*w, "unit_weight_N_per_m3", w->number_or("unit_weight_N_per_m3", 9810.0));
+    c.water_compressibility = w->number_or("compressibility_per_MPa", 4.4e-4) / kMPa;
+  }
+  if (auto s = root.table_opt("initial_stress")) {
+    s->reject_unknown({"surface_elevation_m", "lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0"});
+    auto& is = c.initial_stress;
+    is.surface_elevation = s->number_or("surface_elevation_m", 0.0);
+    is.lithostatic_gradient = positive(*s, "lithostatic_gradient_MPa_per_m", s->number_or("lithostatic_gradient_MPa_per_m", 0.0226)) * kMPa;
+    is.hydrostatic_gradient = s->number_or("hydrostatic_gradient_MPa_per_m", 0.0100) * kMPa;
+    if (is.hydrostatic_gradient < 0 || is.hydrostatic_gradient >= is.lithostatic_gradient)
+      throw s->error("hydrostatic_gradient_MPa_per_m", "must lie in [0, lithostatic gradient)");
+    is.k0 = positive(*s, "k0", s->number_or("k0", 1.0));
+  }
+  std::set<std::string> names;
+  for (const auto& t : root.tables("material")) {
+    c.materials.push_back(parse_material(t));
+    if (!names.insert(c.materials.back().name).second) throw t.error("name", "material defined twice");
+  }
+  for (const auto& t : root.tables("pool")) c.pools.push_back(parse_pool(t));
+  for (const auto& p : c.pools)
+    for (const auto& m : p.materials)
+      if (!c.material(m)) throw InputError(p.where, fmt::format("pool '{}': material '{}' is not defined", p.name, m));
+  if (auto b = root.table_opt("boundary")) {
+    b->reject_unknown({"fixed", "rollers"});
+    if (b->has("fixed")) c.fixed_boundaries = boundary_list(*b, "fixed");
+    if (b->has("rollers")) c.roller_boundaries = boundary_list(*b, "rollers");
+  }
+  for (const auto& t : root.tables("fault")) c.faults.push_back(parse_fault(t));
+  if (auto s = root.table_opt("solver")) {
+    s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule"});
+    c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8));
+    c.max_newton_iterations = static_cast<int>(s->integer_opt("max_newton_iterations").value_or(25));
+    c.linear_solver = s->string_opt("linear_solver").value_or("cg-gamg");
+    if (!std::set<std::string>{"cg-gamg", "cg-hypre", "mumps", "cholmod"}.count(c.linear_solver))
+      throw s->error("linear_solver", "must be one of cg-gamg, cg-hypre, mumps, cholmod");
+    c.inversion_rule = s->string_opt("inversion_rule").value_or("sigma-max");
+    if (!std::set<std::string>{"sigma-max", "sigma-inversion", "stress-dependent"}.count(c.inversion_rule))
+      throw s->error("inversion_rule", "must be one of sigma-max, sigma-inversion, stress-dependent");
+  }
+  if (auto o = root.table_opt("output")) {
+    o->reject_unknown({"dates"});
+    if (o->has("dates")) c.output_dates = o->strings("dates");
+  }
+  return c;
+}
+
+}  // namespace ugs

@@ -1,0 +1,188 @@
+#include "ugs/formats/mesh.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace ugs {
+
+int nodes_per_element(ElementType t) {
+  switch (t) {
+    case ElementType::Point: return 1;
+    case ElementType::Line: return 2;
+    case ElementType::Triangle: return 3;
+    case ElementType::Tetrahedron: return 4;
+    case ElementType::Prism: return 6;
+  }
+  return 0;
+}
+
+int element_dimension(ElementType t) {
+  switch (t) {
+    case ElementType::Point: return 0;
+    case ElementType::Line: return 1;
+    case ElementType::Triangle: return 2;
+    case ElementType::Tetrahedron: return 3;
+    case ElementType::Prism: return 3;
+  }
+  return 0;
+}
+
+std::string_view element_name(ElementType t) {
+  switch (t) {
+    case ElementType::Point: return "point";
+    case ElementType::Line: return "line";
+    case ElementType::Triangle: return "triangle";
+    case ElementType::Tetrahedron: return "tetrahedron";
+    case ElementType::Prism: return "interface prism";
+  }
+  return "?";
+}
+
+std::optional<ElementType> element_type_from_gmsh(int gmsh_type) {
+  switch (gmsh_type) {
+    case 15: return ElementType::Point;
+    case 1: return ElementType::Line;
+    case 2: return ElementType::Triangle;
+    case 4: return ElementType::Tetrahedron;
+    case 6: return ElementType::Prism;
+    default: return std::nullopt;
+  }
+}
+
+std::size_t Mesh::count(ElementType t) const {
+  std::size_t n = 0;
+  for (const auto& b : blocks)
+    if (b.type == t) n += b.size();
+  return n;
+}
+
+std::uint64_t Mesh::max_node_tag() const {
+  std::uint64_t m = 0;
+  for (auto t : node_tags) m = std::max(m, t);
+  return m;
+}
+
+std::uint64_t Mesh::max_element_tag() const {
+  std::uint64_t m = 0;
+  for (const auto& b : blocks)
+    for (auto t : b.tags) m = std::max(m, t);
+  return m;
+}
+
+std::uint32_t Mesh::add_node(const Point3& x, std::uint64_t tag) {
+  if (tag == 0) {
+    if (next_node_tag_ == 0) next_node_tag_ = max_node_tag() + 1;
+    tag = next_node_tag_++;
+  } else if (tag >= next_node_tag_ && next_node_tag_ != 0) {
+    next_node_tag_ = tag + 1;
+  }
+  if (nodes.size() >= std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error("mesh: more than 4 billion nodes");
+  node_tags.push_back(tag);
+  nodes.push_back(x);
+  return static_cast<std::uint32_t>(nodes.size() - 1);
+}
+
+const PhysicalGroup* Mesh::find_physical(int dim, std::string_view name) const {
+  for (const auto& p : physicals)
+    if (p.dim == dim && p.name == name) return &p;
+  return nullptr;
+}
+
+const PhysicalGroup* Mesh::find_physical_tag(int dim, int tag) const {
+  for (const auto& p : physicals)
+    if (p.dim == dim && p.tag == tag) return &p;
+  return nullptr;
+}
+
+const Entity* Mesh::find_entity(int dim, int tag) const {
+  for (const auto& e : entities)
+    if (e.dim == dim && e.tag == tag) return &e;
+  return nullptr;
+}
+
+std::string Mesh::physical_name_of(int entity_dim, int entity_tag) const {
+  const Entity* e = find_entity(entity_dim, entity_tag);
+  if (!e || e->physicals.empty()) return {};
+  const PhysicalGroup* p = find_physical_tag(entity_dim, e->physicals.front());
+  return p ? p->name : std::string{};
+}
+
+int Mesh::entity_for_physical(int dim, const std::string& name) {
+  const PhysicalGroup* p = find_physical(dim, name);
+  int ptag;
+  if (p) {
+    ptag = p->tag;
+    for (const auto& e : entities)
+      if (e.dim == dim && e.physicals.size() == 1 && e.physicals[0] == ptag) return e.tag;
+  } else {
+    ptag = 1;
+    for (const auto& q : physicals) ptag = std::max(ptag, q.tag + 1);
+    physicals.push_back({dim, ptag, name});
+  }
+  int etag = 1;
+  for (const auto& e : entities)
+    if (e.dim == dim) etag = std::max(etag, e.tag + 1);
+  entities.push_back({dim, etag, {ptag}, {}});
+  return etag;
+}
+
+ElementBlock& Mesh::block(int entity_dim, int entity_tag, ElementType type) {
+  for (auto& b : blocks)
+    if (b.entity_dim == entity_dim && b.entity_tag == entity_tag && b.type == type) return b;
+  if (!find_entity(entity_dim, entity_tag)) entities.push_back({entity_dim, entity_tag, {}, {}});
+  ElementBlock b;
+  b.entity_dim = entity_dim;
+  b.entity_tag = entity_tag;
+  b.type = type;
+  blocks.push_back(std::move(b));
+  return blocks.back();
+}
+
+void Mesh::add_element(ElementBlock& b, std::span<const std::uint32_t> node_indices, std::uint64_t tag) {
+  if (static_cast<int>(node_indices.size()) != b.npe())
+    throw std::invalid_argument("mesh: wrong number of nodes for element");
+  if (tag == 0) {
+    if (next_element_tag_ == 0) next_element_tag_ = max_element_tag() + 1;
+    tag = next_element_tag_++;
+  } else if (next_element_tag_ != 0 && tag >= next_element_tag_) {
+    next_element_tag_ = tag + 1;
+  }
+  b.tags.push_back(tag);
+  b.nodes.insert(b.nodes.end(), node_indices.begin(), node_indices.end());
+}
+
+std::unordered_map<std::uint64_t, std::uint32_t> Mesh::node_index_by_tag() const {
+  std::unordered_map<std::uint64_t, std::uint32_t> m;
+  m.reserve(node_tags.size());
+  for (std::uint32_t i = 0; i < node_tags.size(); ++i) m.emplace(node_tags[i], i);
+  return m;
+}
+
+void Mesh::update_entity_bboxes() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (auto& e : entities) e.bbox = {inf, inf, inf, -inf, -inf, -inf};
+  for (const auto& b : blocks) {
+    Entity* e = nullptr;
+    for (auto& f : entities)
+      if (f.dim == b.entity_dim && f.tag == b.entity_tag) e = &f;
+    if (!e) continue;
+    for (auto n : b.nodes)
+      for (int k = 0; k < 3; ++k) {
+        e->bbox[k] = std::min(e->bbox[k], nodes[n][k]);
+        e->bbox[k + 3] = std::max(e->bbox[k + 3], nodes[n][k]);
+      }
+  }
+  for (auto& e : entities)
+    if (e.bbox[0] > e.bbox[3]) e.bbox = {};
+}
+
+double tet_signed_volume(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
+  return (ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx)) / 6.0;
+}
+
+}  // namespace ugs

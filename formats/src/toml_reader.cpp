@@ -1,0 +1,175 @@
+#include "ugs/formats/toml_reader.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+namespace ugs {
+namespace {
+std::string type_name(const toml::value& v) {
+  switch (v.type()) {
+    case toml::value_t::boolean: return "a boolean";
+    case toml::value_t::integer: return "an integer";
+    case toml::value_t::floating: return "a number";
+    case toml::value_t::string: return "a string";
+    case toml::value_t::array: return "an array";
+    case toml::value_t::table: return "a table";
+    default: return "a date/time";
+  }
+}
+}  // namespace
+
+TomlTable TomlTable::parse_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(path, "cannot open");
+  try {
+    return TomlTable(toml::parse(f, path), path, "");
+  } catch (const toml::syntax_error& e) {
+    std::string msg = e.what();
+    // toml11's message is multi-line; keep its first line.
+    const auto nl = msg.find('\n');
+    if (nl != std::string::npos) msg = msg.substr(0, nl);
+    if (msg.rfind("[error] ", 0) == 0) msg = msg.substr(8);
+    throw InputError(path + ":" + std::to_string(e.location().line()), "TOML syntax error: " + msg);
+  }
+}
+
+TomlTable::TomlTable(toml::value v, std::string file, std::string path_in_doc)
+    : v_(std::move(v)), file_(std::move(file)), path_(std::move(path_in_doc)) {}
+
+std::string TomlTable::where() const {
+  const auto loc = v_.location();
+  return loc.line() > 0 && !path_.empty() ? fmt::format("{}:{}", file_, loc.line()) : file_;
+}
+
+std::string TomlTable::where(const std::string& key) const {
+  if (!v_.is_table() || !v_.as_table().count(key)) return where();
+  return fmt::format("{}:{}", file_, v_.as_table().at(key).location().line());
+}
+
+InputError TomlTable::error(const std::string& key, const std::string& message) const {
+  const std::string full = path_.empty() ? key : path_ + "." + key;
+  return InputError(where(key), fmt::format("'{}': {}", full, message));
+}
+
+bool TomlTable::has(const std::string& key) const { return v_.is_table() && v_.as_table().count(key) > 0; }
+
+const toml::value& TomlTable::at(const std::string& key) const {
+  if (!has(key)) throw InputError(where(), fmt::format("'{}' is missing", path_.empty() ? key : path_ + "." + key));
+  return v_.as_table().at(key);
+}
+
+double TomlTable::number(const std::string& key) const {
+  const auto& v = at(key);
+  if (v.is_floating()) return v.as_floating();
+  if (v.is_integer()) return static_cast<double>(v.as_integer());
+  throw error(key, "expected a number, got " + type_name(v));
+}
+
+std::optional<double> TomlTable::number_opt(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return number(key);
+}
+
+long long TomlTable::integer(const std::string& key) const {
+  const auto& v = at(key);
+  if (!v.is_integer()) throw error(key, "expected an integer, got " + type_name(v));
+  return v.as_integer();
+}
+
+std::optional<long long> TomlTable::integer_opt(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return integer(key);
+}
+
+std::string TomlTable::string(const std::string& key) const {
+  const auto& v = at(key);
+  if (!v.is_string()) throw error(key, "expected a string, got " + type_name(v));
+  return v.as_string().str;
+}
+
+std::optional<std::string> TomlTable::string_opt(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return string(key);
+}
+
+bool TomlTable::boolean_or(const std::string& key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const auto& v = at(key);
+  if (!v.is_boolean()) throw error(key, "expected true or false, got " + type_name(v));
+  return v.as_boolean();
+}
+
+std::vector<double> TomlTable::numbers(const std::string& key) const {
+  const auto& v = at(key);
+  if (!v.is_array()) throw error(key, "expected an array of numbers, got " + type_name(v));
+  std::vector<double> r;
+  for (const auto& e : v.as_array()) {
+    if (e.is_floating()) r.push_back(e.as_floating());
+    else if (e.is_integer()) r.push_back(static_cast<double>(e.as_integer()));
+    else throw error(key, "expected an array of numbers, found " + type_name(e));
+  }
+  return r;
+}
+
+std::vector<std::string> TomlTable::strings(const std::string& key) const {
+  const auto& v = at(key);
+  if (v.is_string()) return {v.as_string().str};
+  if (!v.is_array()) throw error(key, "expected an array of strings, got " + type_name(v));
+  std::vector<std::string> r;
+  for (const auto& e : v.as_array()) {
+    if (!e.is_string()) throw error(key, "expected an array of strings, found " + type_name(e));
+    r.push_back(e.as_string().str);
+  }
+  return r;
+}
+
+std::optional<TomlTable> TomlTable::table_opt(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return table(key);
+}
+
+TomlTable TomlTable::table(const std::string& key) const {
+  const auto& v = at(key);
+  if (!v.is_table()) throw error(key, "expected a table, got " + type_name(v));
+  return TomlTable(v, file_, path_.empty() ? key : path_ + "." + key);
+}
+
+std::vector<TomlTable> TomlTable::tables(const std::string& key) const {
+  std::vector<TomlTable> r;
+  if (!has(key)) return r;
+  const auto& v = at(key);
+  if (!v.is_array()) throw error(key, "expected [[" + key + "]] tables, got " + type_name(v));
+  std::size_t i = 0;
+  for (const auto& e : v.as_array()) {
+    if (!e.is_table()) throw error(key, "expected [[" + key + "]] tables, found " + type_name(e));
+    r.emplace_back(e, file_, fmt::format("{}[{}]", path_.empty() ? key : path_ + "." + key, i++));
+  }
+  return r;
+}
+
+std::vector<std::string> TomlTable::keys() const {
+  std::vector<std::string> k;
+  if (v_.is_table())
+    for (const auto& [name, _] : v_.as_table()) k.push_back(name);
+  return k;
+}
+
+void TomlTable::reject_unknown(const std::set<std::string>& known) const {
+  for (const auto& k : keys())
+    if (!known.count(k)) {
+      std::string list;
+      for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
+      throw error(k, "unknown key (known here: " + list + ")");
+    }
+}
+
+std::string resolve_relative(const std::string& base_file, const std::string& relative) {
+  namespace fs = std::filesystem;
+  const fs::path r(relative);
+  if (r.is_absolute()) return relative;
+  return (fs::path(base_file).parent_path() / r).lexically_normal().string();
+}
+
+}  // namespace ugs

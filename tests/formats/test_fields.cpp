@@ -1,0 +1,295 @@
+// HDF5 + XDMF field series, built once per HDF5 flavour (test_fields_serial, test_fields_mpi):
+// writer -> reader round trips are exact, the reference XDMF library (libxdmf, the one behind
+// ParaView's XDMF 3 reader) opens the index and finds the same grids, topologies and values,
+// and bad files give one clear InputError.
+#include <Xdmf.hpp>
+#include <XdmfAttribute.hpp>
+#include <XdmfAttributeCenter.hpp>
+#include <XdmfDomain.hpp>
+#include <XdmfGeometry.hpp>
+#include <XdmfGridCollection.hpp>
+#include <XdmfGridCollectionType.hpp>
+#include <XdmfReader.hpp>
+#include <XdmfTime.hpp>
+#include <XdmfTopology.hpp>
+#include <XdmfTopologyType.hpp>
+#include <XdmfUnstructuredGrid.hpp>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <functional>
+
+#include "sample_fields.hpp"
+#include "ugs/formats/fields.hpp"
+
+namespace fs = std::filesystem;
+using namespace ugs;
+
+namespace {
+
+const char* kDates[] = {"1964-01-01", "1990-06-30", "2015-12-31T12:00:00"};
+const double kTimes[] = {0.0, 8.5e8, 1.6251e9};
+
+struct Series {
+  std::vector<std::vector<Field>> node, cell;  // per step
+};
+
+// Writes three steps of a scalar and a vector node field and a tensor and scalar cell field.
+Series write_series(const fs::path& h5, const Mesh& m, const FieldSeriesOptions& options = {}) {
+  FieldSeriesWriter w(h5.string(), m, options);
+  Series s;
+  for (int k = 0; k < 3; ++k) {
+    s.node.push_back({test::sample_field("dp", 1, m.num_nodes(), k, 0.25), test::sample_field("u", 3, m.num_nodes(), k, -7.0)});
+    s.cell.push_back({test::sample_field("stress", 6, w.cell_count(), k, 11.0), test::sample_field("chi", 1, w.cell_count(), k, 0.1)});
+    w.add_step(kDates[k], kTimes[k], s.node.back(), s.cell.back());
+  }
+  w.commit();
+  return s;
+}
+
+void expect_same(const Field& a, const Field& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.components, b.components) << a.name;
+  EXPECT_EQ(a.values, b.values) << a.name;  // bit-exact
+}
+
+std::vector<std::uint32_t> connectivity(const Mesh& m, ElementType t) {
+  std::vector<std::uint32_t> r;
+  for (const ElementBlock& b : m.blocks)
+    if (b.type == t) r.insert(r.end(), b.nodes.begin(), b.nodes.end());
+  return r;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+shared_ptr<XdmfDomain> read_xdmf(const fs::path& p) {
+  shared_ptr<XdmfReader> reader = XdmfReader::New();
+  return shared_dynamic_cast<XdmfDomain>(reader->read(p.string()));
+}
+
+// Attribute values through libxdmf's own HDF5 reading.
+void expect_xdmf_attribute(const shared_ptr<XdmfUnstructuredGrid>& g, const Field& f,
+                           const shared_ptr<const XdmfAttributeCenter>& center) {
+  shared_ptr<XdmfAttribute> a = g->getAttribute(f.name);
+  ASSERT_TRUE(a) << f.name;
+  EXPECT_EQ(a->getCenter(), center) << f.name;
+  if (!a->isInitialized()) a->read();
+  ASSERT_EQ(a->getSize(), f.values.size()) << f.name;
+  for (unsigned i = 0; i < a->getSize(); ++i) ASSERT_EQ(a->getValue<double>(i), f.values[i]) << f.name << " " << i;
+}
+
+}  // namespace
+
+TEST(Fields, RoundTripIsExact) {
+  const auto dir = test::temp_dir("fields-rt");
+  const Mesh m = test::faulted_cube_mesh();
+  const Series s = write_series(dir / "r.h5", m);
+  EXPECT_TRUE(fs::exists(dir / "r.xdmf"));
+
+  FieldSeriesReader r((dir / "r.h5").string());
+  ASSERT_EQ(r.steps().size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(r.steps()[k].date, kDates[k]);
+    EXPECT_EQ(r.steps()[k].time, kTimes[k]);
+  }
+  EXPECT_EQ(r.step("1990-06-30"), 1u);
+  EXPECT_EQ(r.node_tags(), m.node_tags);
+  EXPECT_EQ(r.coordinates(), m.nodes);
+  EXPECT_EQ(r.cell_types(), (std::vector<ElementType>{ElementType::Tetrahedron, ElementType::Prism}));
+  EXPECT_EQ(r.num_cells(), 7u);
+  EXPECT_EQ(r.cells(ElementType::Tetrahedron), connectivity(m, ElementType::Tetrahedron));
+  EXPECT_EQ(r.cells(ElementType::Prism), connectivity(m, ElementType::Prism));
+  EXPECT_TRUE(r.cells(ElementType::Triangle).empty());
+  EXPECT_EQ(r.cell_tags(), (std::vector<std::uint64_t>{1, 2, 3, 4, 5, 6, 9}));
+  const std::int32_t rock = m.find_physical(3, "mat:rock")->tag, fault = m.find_physical(3, "fault:F1")->tag;
+  EXPECT_EQ(r.materials(), (std::vector<std::int32_t>{rock, rock, rock, rock, rock, rock, fault}));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(r.node_field_names(k), (std::vector<std::string>{"dp", "u"}));
+    EXPECT_EQ(r.cell_field_names(k), (std::vector<std::string>{"chi", "stress"}));
+    for (const Field& f : s.node[k]) expect_same(r.node_field(k, f.name), f);
+    for (const Field& f : s.cell[k]) expect_same(r.cell_field(k, f.name), f);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Fields, XdmfLibraryReadsTheIndex) {
+  const auto dir = test::temp_dir("fields-xdmf");
+  const Mesh m = test::faulted_cube_mesh();
+  const Series s = write_series(dir / "r.h5", m);
+
+  shared_ptr<XdmfDomain> domain = read_xdmf(dir / "r.xdmf");
+  ASSERT_TRUE(domain);
+  ASSERT_EQ(domain->getNumberGridCollections(), 1u);
+  shared_ptr<XdmfGridCollection> series = domain->getGridCollection(0);
+  EXPECT_EQ(series->getType(), XdmfGridCollectionType::Temporal());
+  ASSERT_EQ(series->getNumberUnstructuredGrids(), 3u);
+  for (unsigned k = 0; k < 3; ++k) {
+    shared_ptr<XdmfUnstructuredGrid> g = series->getUnstructuredGrid(k);
+    EXPECT_EQ(g->getName(), kDates[k]);
+    ASSERT_TRUE(g->getTime());
+    EXPECT_EQ(g->getTime()->getValue(), kTimes[k]);
+    EXPECT_EQ(g->getTopology()->getType(), XdmfTopologyType::Mixed());
+    EXPECT_EQ(g->getTopology()->getNumberElements(), 7u);
+    EXPECT_EQ(g->getGeometry()->getNumberPoints(), m.num_nodes());
+    for (const Field& f : s.node[k]) expect_xdmf_attribute(g, f, XdmfAttributeCenter::Node());
+    for (const Field& f : s.cell[k]) expect_xdmf_attribute(g, f, XdmfAttributeCenter::Cell());
+  }
+
+  // Geometry, node tags and the mixed topology also come through libxdmf's HDF5 reading.
+  shared_ptr<XdmfUnstructuredGrid> g = series->getUnstructuredGrid(2);
+  shared_ptr<XdmfGeometry> geo = g->getGeometry();
+  if (!geo->isInitialized()) geo->read();
+  for (std::size_t i = 0; i < m.num_nodes(); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(geo->getValue<double>(3 * i + c), m.nodes[i][c]);
+  shared_ptr<XdmfAttribute> tags = g->getAttribute("node_tag");
+  ASSERT_TRUE(tags);
+  tags->read();
+  for (std::size_t i = 0; i < m.num_nodes(); ++i) EXPECT_EQ(tags->getValue<long long>(i), (long long)m.node_tags[i]);
+  shared_ptr<XdmfTopology> topo = g->getTopology();
+  if (!topo->isInitialized()) topo->read();
+  ASSERT_EQ(topo->getSize(), 6u * 5 + 7);  // each cell: type code and its nodes
+  EXPECT_EQ(topo->getValue<unsigned>(0), 6u);   // tetrahedron
+  EXPECT_EQ(topo->getValue<unsigned>(30), 8u);  // wedge
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(topo->getValue<unsigned>(31 + k), m.blocks.back().nodes[k]);
+  fs::remove_all(dir);
+}
+
+TEST(Fields, SingleTypeTopologies) {
+  const auto dir = test::temp_dir("fields-types");
+  const Mesh m = test::faulted_cube_mesh();
+  const struct {
+    ElementType type;
+    shared_ptr<const XdmfTopologyType> xdmf;
+    unsigned cells;
+  } cases[] = {{ElementType::Tetrahedron, XdmfTopologyType::Tetrahedron(), 6},
+               {ElementType::Triangle, XdmfTopologyType::Triangle(), 2},
+               {ElementType::Prism, XdmfTopologyType::Wedge(), 1}};
+  for (const auto& c : cases) {
+    const std::string name = std::string(element_name(c.type)).substr(0, 3) + ".h5";
+    const Series s = write_series(dir / name, m, FieldSeriesOptions{{c.type}});
+    FieldSeriesReader r((dir / name).string());
+    EXPECT_EQ(r.num_cells(), c.cells);
+    expect_same(r.cell_field(1, "chi"), s.cell[1][1]);
+
+    auto domain = read_xdmf(dir / fs::path(name).replace_extension(".xdmf"));
+    auto g = domain->getGridCollection(0)->getUnstructuredGrid(1);
+    EXPECT_EQ(g->getTopology()->getType(), c.xdmf) << name;
+    EXPECT_EQ(g->getTopology()->getNumberElements(), c.cells) << name;
+    auto topo = g->getTopology();
+    topo->read();
+    const auto conn = connectivity(m, c.type);
+    ASSERT_EQ(topo->getSize(), conn.size());
+    for (unsigned i = 0; i < conn.size(); ++i) EXPECT_EQ(topo->getValue<unsigned>(i), conn[i]);
+    expect_xdmf_attribute(g, s.cell[1][0], XdmfAttributeCenter::Cell());
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Fields, NoStepsIsStillAMesh) {
+  const auto dir = test::temp_dir("fields-empty");
+  const Mesh m = test::faulted_cube_mesh();
+  FieldSeriesWriter w((dir / "mesh.h5").string(), m);
+  w.commit();
+  FieldSeriesReader r((dir / "mesh.h5").string());
+  EXPECT_TRUE(r.steps().empty());
+  EXPECT_EQ(r.num_nodes(), m.num_nodes());
+  auto domain = read_xdmf(dir / "mesh.xdmf");
+  ASSERT_EQ(domain->getNumberUnstructuredGrids(), 1u);
+  EXPECT_EQ(domain->getUnstructuredGrid(0)->getTopology()->getNumberElements(), 7u);
+  fs::remove_all(dir);
+}
+
+TEST(Fields, SameInputSameBytes) {
+  const auto dir = test::temp_dir("fields-det");
+  const Mesh m = test::faulted_cube_mesh();
+  write_series(dir / "a.h5", m);
+  ::sleep(1);  // a timestamp in the file would now differ
+  write_series(dir / "b.h5", m);
+  EXPECT_EQ(test::slurp(dir / "a.h5"), test::slurp(dir / "b.h5"));
+  std::string xa = test::slurp(dir / "a.xdmf"), xb = test::slurp(dir / "b.xdmf");
+  for (auto* x : {&xa, &xb}) x->erase(0, x->find("<Grid"));  // they differ only in the file name
+  EXPECT_EQ(xa.size(), xb.size());
+  fs::remove_all(dir);
+}
+
+TEST(Fields, WithoutCommitNothingIsLeft) {
+  const auto dir = test::temp_dir("fields-abort");
+  const Mesh m = test::faulted_cube_mesh();
+  {
+    FieldSeriesWriter w((dir / "r.h5").string(), m);
+    const std::vector<Field> f = {test::sample_field("dp", 1, m.num_nodes(), 0, 0.0)};
+    w.add_step("2000-01-01", 0.0, f);
+    EXPECT_FALSE(fs::is_empty(dir));  // the temporary
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+  fs::remove_all(dir);
+}
+
+TEST(Fields, WriterRejectsMisuse) {
+  const auto dir = test::temp_dir("fields-misuse");
+  const Mesh m = test::faulted_cube_mesh();
+  EXPECT_THROW(FieldSeriesWriter("-", m), InputError);
+  EXPECT_THROW(FieldSeriesWriter((dir / "no" / "such" / "dir.h5").string(), m), InputError);
+  FieldSeriesWriter w((dir / "r.h5").string(), m);
+  const std::vector<Field> good = {test::sample_field("dp", 1, m.num_nodes(), 0, 0.0)};
+  const std::vector<Field> short_field = {test::sample_field("dp", 1, m.num_nodes() - 1, 0, 0.0)};
+  EXPECT_THROW(w.add_step("2000-01-01", 0, short_field), std::invalid_argument);
+  EXPECT_THROW(w.add_step("2000-13-01", 0, good), std::invalid_argument);
+  w.add_step("2000-01-01", 0, good);
+  EXPECT_THROW(w.add_step("2000-01-01", 1, good), std::invalid_argument);
+  fs::remove_all(dir);
+}
+
+TEST(Fields, ReaderErrorsNameFileFieldAndStep) {
+  const auto dir = test::temp_dir("fields-errors");
+  const Mesh m = test::faulted_cube_mesh();
+  write_series(dir / "r.h5", m);
+  const std::string h5 = (dir / "r.h5").string();
+  FieldSeriesReader r(h5);
+  EXPECT_EQ(error_of([&] { r.node_field(0, "p"); }),
+            h5 + ": no node field 'p' at step 1964-01-01 (node fields: dp, u)");
+  EXPECT_EQ(error_of([&] { r.cell_field(2, "dp"); }),
+            h5 + ": no cell field 'dp' at step 2015-12-31T12:00:00 (cell fields: chi, stress)");
+  EXPECT_EQ(error_of([&] { r.step("1970-01-01"); }), h5 + ": no step 1970-01-01 (3 steps, 1964-01-01 to 2015-12-31T12:00:00)");
+
+  const std::string missing = (dir / "missing.h5").string();
+  EXPECT_EQ(error_of([&] { FieldSeriesReader x(missing); }), missing + ": cannot open: No such file or directory");
+  test::spit(dir / "text.h5", "date,p_MPa\n");
+  EXPECT_EQ(error_of([&] { FieldSeriesReader x((dir / "text.h5").string()); }),
+            (dir / "text.h5").string() + ": not an HDF5 file");
+
+  // A truncated file is refused with one line, whatever part is missing.
+  const std::string full = test::slurp(dir / "r.h5");
+  for (std::size_t keep : {full.size() / 2, full.size() - 100, std::size_t(600)}) {
+    test::spit(dir / "cut.h5", full.substr(0, keep));
+    const std::string e = error_of([&] {
+      FieldSeriesReader x((dir / "cut.h5").string());
+      for (std::size_t k = 0; k < x.steps().size(); ++k) x.node_field(k, "u");
+    });
+    EXPECT_EQ(e.rfind((dir / "cut.h5").string() + ": ", 0), 0u) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+  fs::remove_all(dir);
+}
+
+// A file written by the other HDF5 flavour's build reads back the same (UGS_OTHER_WRITER is the
+// sample writer linked against the other flavour).
+TEST(Fields, ReadsTheOtherFlavoursFile) {
+  const auto dir = test::temp_dir("fields-other");
+  const auto h5 = dir / "other.h5";
+  const auto res = test::run(std::string(UGS_OTHER_WRITER) + " " + h5.string());
+  ASSERT_EQ(res.exit_code, 0) << res.err;
+  const Mesh m = test::faulted_cube_mesh();
+  FieldSeriesReader r(h5.string());
+  ASSERT_EQ(r.steps().size(), 1u);
+  expect_same(r.node_field(0, "u"), test::sample_field("u", 3, m.num_nodes(), 0, -7.0));
+  EXPECT_EQ(r.coordinates(), m.nodes);
+  fs::remove_all(dir);
+}
