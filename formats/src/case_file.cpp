@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "ugs/formats/csv.hpp"
+
 namespace ugs {
 namespace {
 
@@ -25,7 +27,7 @@ double positive(const TomlTable& t, const std::string& key, double v) {
 
 MaterialSpec parse_material(const TomlTable& t) {
   t.reject_unknown({"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b",
-                    "c_R", "E_MPa", "K_m_per_s", "porosity"});
+                    "c_R", "E_MPa", "K_m_per_s", "porosity", "sigma_z_min_MPa"});
   MaterialSpec m;
   m.name = t.string("name");
   m.where = t.where();
@@ -44,6 +46,7 @@ MaterialSpec parse_material(const TomlTable& t) {
   m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2));
   m.cm_b = t.number_or("cm_b", 1.1347);
   if (t.has("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
+  m.sigma_z_min_MPa = positive(t, "sigma_z_min_MPa", t.number_or("sigma_z_min_MPa", 0.1));
   if (t.has("E_MPa")) m.E_Pa = positive(t, "E_MPa", t.number("E_MPa")) * kMPa;
   if (m.law == MaterialLaw::Linear && !m.E_Pa) throw t.error("E_MPa", "is required for law = \"linear\"");
   if (m.law == MaterialLaw::Hypoplastic && !m.c_R) throw t.error("c_R", "is required for law = \"hypoplastic\"");
@@ -63,12 +66,13 @@ MaterialSpec parse_material(const TomlTable& t) {
 }
 
 PoolSpec parse_pool(const TomlTable& t) {
-  t.reject_unknown({"name", "materials", "schedule", "column", "reference_pressure_MPa"});
+  t.reject_unknown({"name", "materials", "aquifer_materials", "schedule", "column", "reference_pressure_MPa"});
   PoolSpec p;
   p.name = t.string("name");
   p.where = t.where();
   p.materials = t.strings("materials");
   if (p.materials.empty()) throw t.error("materials", "needs at least one material");
+  if (t.has("aquifer_materials")) p.aquifer_materials = t.strings("aquifer_materials");
   p.schedule = resolve_relative(t.file(), t.string("schedule"));
   p.column = t.has("column") ? t.string("column") : "p_norm";
   if (p.column != "p_norm" && p.column != "p_MPa") throw t.error("column", "must be p_norm or p_MPa");
@@ -92,8 +96,11 @@ FaultSpec parse_fault(const TomlTable& t) {
 
 const std::set<std::string> kBoundaryNames{"west", "east", "south", "north", "bottom", "top"};
 
+// Boundary names as in the mesh group without its prefix: "west" or "bnd:west".
 std::vector<std::string> boundary_list(const TomlTable& t, const std::string& key) {
   auto v = t.strings(key);
+  for (auto& b : v)
+    if (b.rfind("bnd:", 0) == 0) b = b.substr(4);
   for (const auto& b : v)
     if (!kBoundaryNames.count(b)) throw t.error(key, fmt::format("unknown boundary '{}' (west, east, south, north, bottom, top)", b));
   return v;
@@ -140,16 +147,28 @@ CaseFile read_case_file(const std::string& path) {
   }
   for (const auto& t : root.tables("pool")) c.pools.push_back(parse_pool(t));
   for (const auto& p : c.pools)
-    for (const auto& m : p.materials)
-      if (!c.material(m)) throw InputError(p.where, fmt::format("pool '{}': material '{}' is not defined", p.name, m));
+    for (const auto& list : {p.materials, p.aquifer_materials})
+      for (const auto& m : list)
+        if (!c.material(m))   throw InputError(p.where, fmt::format("pool '{}': material '{}' is not defined", p.name, m));
   if (auto b = root.table_opt("boundary")) {
-    b->reject_unknown({"fixed", "rollers"});
+    b->reject_unknown({"fixed", "rollers", "free"});
     if (b->has("fixed")) c.fixed_boundaries = boundary_list(*b, "fixed");
     if (b->has("rollers")) c.roller_boundaries = boundary_list(*b, "rollers");
+    if (b->has("free")) c.free_boundaries = boundary_list(*b, "free");
+    for (const auto& r : c.roller_boundaries)
+      for (const auto& f : c.fixed_boundaries)
+        if (r == f) throw b->error("rollers", fmt::format("boundary '{}' is also in fixed", r));
+    for (const auto& r : c.free_boundaries)
+      for (const auto& f : c.fixed_boundaries)
+        if (r == f) throw b->error("free", fmt::format("boundary '{}' is also in fixed", r));
+    for (const auto& r : c.free_boundaries)
+      for (const auto& f : c.roller_boundaries)
+        if (r == f) throw b->error("free", fmt::format("boundary '{}' is also in rollers", r));
   }
   for (const auto& t : root.tables("fault")) c.faults.push_back(parse_fault(t));
   if (auto s = root.table_opt("solver")) {
-    s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule"});
+    s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
+                       "reuse_preconditioner"});
     c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8));
     c.max_newton_iterations = static_cast<int>(s->integer_opt("max_newton_iterations").value_or(25));
     c.linear_solver = s->string_opt("linear_solver").value_or("cg-gamg");
@@ -158,10 +177,26 @@ CaseFile read_case_file(const std::string& path) {
     c.inversion_rule = s->string_opt("inversion_rule").value_or("sigma-max");
     if (!std::set<std::string>{"sigma-max", "sigma-inversion", "stress-dependent"}.count(c.inversion_rule))
       throw s->error("inversion_rule", "must be one of sigma-max, sigma-inversion, stress-dependent");
+    if (c.max_newton_iterations < 1) throw s->error("max_newton_iterations", "must be at least 1");
+    c.max_substeps = static_cast<int>(s->integer_opt("max_substeps").value_or(64));
+    if (c.max_substeps < 1 || c.max_substeps > 4096) throw s->error("max_substeps", "must lie in [1, 4096]");
+    c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true);
   }
   if (auto o = root.table_opt("output")) {
-    o->reject_unknown({"dates"});
+    o->reject_unknown({"dates", "fields", "checkpoint_every"});
     if (o->has("dates")) c.output_dates = o->strings("dates");
+    for (const auto& d : c.output_dates)
+      if (!parse_iso_date(d)) throw o->error("dates", fmt::format("'{}' is not an ISO 8601 date", d));
+    if (o->has("fields")) {
+      c.output_fields = o->strings("fields");
+      static const std::set<std::string> known{"displacement", "strain", "stress", "stress_change", "cm", "state", "pressure"};
+      for (const auto& f : c.output_fields)
+        if (!known.count(f))
+          throw o->error("fields", fmt::format("unknown field '{}' (displacement, strain, stress, stress_change, cm, state, "
+                                               "pressure)", f));
+    }
+    c.checkpoint_every = static_cast<int>(o->integer_opt("checkpoint_every").value_or(0));
+    if (c.checkpoint_every < 0) throw o->error("checkpoint_every", "must not be negative");
   }
   return c;
 }

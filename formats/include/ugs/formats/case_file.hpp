@@ -28,6 +28,7 @@ struct MaterialSpec {
   // Compressibility law c_M = a sigma_z^-b [1/MPa, sigma_z in MPa] and c_R.
   double cm_a = 1.0044e-2, cm_b = 1.1347;
   std::optional<double> c_R;
+  double sigma_z_min_MPa = 0.1;  // floor of sigma_z in the law (c_M is singular at 0); mechanics
   // Linear law: vertical Young's modulus [Pa] (E for isotropic).
   std::optional<double> E_Pa;
   // Flow: hydraulic conductivity [m/s] along x, y, z and porosity; absent for non-flow units.
@@ -39,6 +40,7 @@ struct PoolSpec {
   std::string name;
   std::string where;
   std::vector<std::string> materials;  // materials whose nodes follow the schedule
+  std::vector<std::string> aquifer_materials;  // hydraulically connected materials (flow sub-mesh)
   std::string schedule;                // CSV path, resolved against the case file
   std::string column = "p_norm";       // p_norm (normalized) or p_MPa
   std::optional<double> reference_pressure_Pa;  // needed for normalized schedules
@@ -69,14 +71,20 @@ struct CaseFile {
   std::vector<PoolSpec> pools;
   std::vector<std::string> fixed_boundaries{"west", "east", "south", "north", "bottom"};
   std::vector<std::string> roller_boundaries;  // zero normal displacement only
+  std::vector<std::string> free_boundaries;    // traction-free (stated for clarity; the default)
   std::vector<FaultSpec> faults;
   // Solver settings (docs/case-file.md).
   double newton_tolerance = 1e-8;
   int max_newton_iterations = 25;
   std::string linear_solver = "cg-gamg";        // cg-gamg | cg-hypre | mumps | cholmod
   std::string inversion_rule = "sigma-max";     // sigma-max | sigma-inversion | stress-dependent
+  int max_substeps = 64;                        // a step that fails may be split into up to this many
+  bool reuse_preconditioner = true;             // keep the AMG hierarchy while it converges well
   // Output dates (ISO 8601); empty means every schedule date.
   std::vector<std::string> output_dates;
+  // Fields written at output dates (ugs-solve); empty means all (docs/case-file.md).
+  std::vector<std::string> output_fields;
+  int checkpoint_every = 0;  // ugs-solve: also save the restart state every N steps (0: output dates only)
 
   const MaterialSpec* material(const std::string& name) const;
 };

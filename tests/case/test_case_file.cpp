@@ -1,0 +1,65 @@
+// The case file: the sample twin's case parses with SI conversions; unknown keys and
+// non-physical values are refused with file:line.
+#include <gtest/gtest.h>
+
+#include "run_tool.hpp"
+#include "ugs/formats/case_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace ugs;
+
+TEST(CaseFile, SampleTwinParses) {
+  const CaseFile c = read_case_file(std::string(UGS_SOURCE_DIR) + "/data-samples/po-plain/case.toml");
+  EXPECT_EQ(c.crs, "EPSG:32632");
+  ASSERT_EQ(c.materials.size(), 7u);
+  const MaterialSpec* pc = c.material("pool_c");
+  ASSERT_NE(pc, nullptr);
+  EXPECT_EQ(pc->law, MaterialLaw::Hypoplastic);
+  EXPECT_DOUBLE_EQ(*pc->c_R, 3.0);
+  EXPECT_DOUBLE_EQ(pc->Eh_over_Ez, 3.0);
+  EXPECT_DOUBLE_EQ((*pc->K)[2], 2.04e-8);
+  EXPECT_EQ(c.material("surrounding_rock")->law, MaterialLaw::ElasticDepth);
+  EXPECT_DOUBLE_EQ(c.initial_stress.lithostatic_gradient, 0.0226e6);
+  ASSERT_EQ(c.pools.size(), 2u);
+  EXPECT_NEAR(*c.pools[1].reference_pressure_Pa, 15.2055e6, 1.0);
+  EXPECT_TRUE(fs::exists(c.pools[1].schedule)) << c.pools[1].schedule;
+  EXPECT_EQ(c.faults.size(), 6u);
+  EXPECT_EQ(c.output_dates.size(), 5u);
+}
+
+namespace {
+std::string error_of(const std::string& toml) {
+  const auto dir = test::temp_dir("case");
+  test::spit(dir / "c.toml", toml);
+  try {
+    read_case_file((dir / "c.toml").string());
+  } catch (const InputError& e) {
+    fs::remove_all(dir);
+    return e.what();
+  }
+  fs::remove_all(dir);
+  return "no error";
+}
+}  // namespace
+
+TEST(CaseFile, UnknownKeyIsAnErrorWithItsLine) {
+  const auto e = error_of("crs = \"EPSG:32632\"\n[[material]]\nname = \"a\"\nnu_zz = 0.3\n");
+  EXPECT_NE(e.find("c.toml:4: 'material[0].nu_zz': unknown key"), std::string::npos) << e;
+}
+
+TEST(CaseFile, NonPhysicalValuesAreRefused) {
+  EXPECT_NE(error_of("[[material]]\nname = \"a\"\nnu_z = 0.5\n").find("outside (-1, 0.5)"), std::string::npos);
+  EXPECT_NE(error_of("[[material]]\nname = \"a\"\nEh_over_Ez = 0\n").find("must be positive"), std::string::npos);
+  EXPECT_NE(error_of("[[material]]\nname = \"a\"\nlaw = \"hypoplastic\"\nc_R = -3\n").find("must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of("[[material]]\nname = \"a\"\nlaw = \"hypoplastic\"\n").find("'material[0].c_R': is required"),
+            std::string::npos);
+  EXPECT_NE(error_of("[[fault]]\nname = \"f\"\nfriction_deg = 95\n").find("(0, 90)"), std::string::npos);
+  EXPECT_NE(error_of("[[fault]]\nname = \"f\"\ncohesion_MPa = -1\n").find("must not be negative"), std::string::npos);
+  EXPECT_NE(error_of("[boundary]\nfixed = [\"wes\"]\n").find("unknown boundary 'wes'"), std::string::npos);
+}
+
+TEST(CaseFile, SyntaxErrorNamesTheLine) {
+  const auto e = error_of("crs = \"EPSG:32632\"\n[model\n");
+  EXPECT_NE(e.find("c.toml:2: TOML syntax error"), std::string::npos) << e;
+}

@@ -1,0 +1,28 @@
+# Installs ugs into a scratch prefix, builds the consumer project against it with find_package(ugs),
+# and runs it on a mesh written by ugs itself.
+# Usage: cmake -DBUILD=<ugs build dir> -DSOURCE=<this folder> -DWORK=<scratch dir> -DMESH=<msh> -P check_install.cmake
+file(REMOVE_RECURSE ${WORK})
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "cmake --install failed")
+endif()
+foreach(tool ugs-meshinfo)
+  if(NOT EXISTS ${WORK}/prefix/bin/${tool})
+    message(FATAL_ERROR "${tool} not installed")
+  endif()
+endforeach()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE}/consumer -B ${WORK}/build -DCMAKE_PREFIX_PATH=${WORK}/prefix
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "find_package(ugs) failed: ${err}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK}/build RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "consumer build failed: ${out} ${err}")
+endif()
+execute_process(COMMAND ${WORK}/build/consumer ${MESH} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+string(STRIP "${out}" out)
+if(NOT rc EQUAL 0 OR NOT out STREQUAL "6")
+  message(FATAL_ERROR "consumer printed '${out}' (exit ${rc}), expected 6 tetrahedra")
+endif()
+file(REMOVE_RECURSE ${WORK})
