@@ -413,21 +413,22 @@ def check_case(d, tag):
     check(all(k in case for k in ("model", "initial_stress", "material", "pool", "boundary", "output")),
           f"[{tag}] case.toml: sections model, initial_stress, material, pool, boundary, output")
     mats = {m["name"]: m for m in case.get("material", [])}
-    ok = set(mats) == MATERIALS and case["model"].get("crs") == "EPSG:32632"
+    ok = set(mats) == MATERIALS and case.get("crs") == "EPSG:32632"
     ok = ok and mats["pool_c"].get("c_R") == 3.0 and mats["pool_a"].get("c_R") == 5.0 \
-        and mats["interlayer"].get("c_R") == 5.0 and mats["surrounding_rock"].get("model") == "elastic"
+        and mats["interlayer"].get("c_R") == 5.0 and mats["surrounding_rock"].get("law") == "elastic"
     ok = ok and all(m.get("nu_z") == 0.3 and m.get("cm_a") == 1.0044e-2 and m.get("cm_b") == 1.1347 for m in mats.values())
-    ok = ok and all(mats[n].get("kx") == 2.04e-7 and mats[n].get("kz") == 2.04e-8 and mats[n].get("porosity") == 0.2
+    ok = ok and all(mats[n].get("K_m_per_s") == [2.04e-7, 2.04e-7, 2.04e-8] and mats[n].get("porosity") == 0.2
                     for n in ("pool_a", "pool_c", "aquifer_pool_a", "aquifer_pool_c"))
     ok = ok and mats["pool_c"].get("Eh_over_Ez") == 3.0 and mats["pool_c"].get("nuh_over_nuz") == 0.2
     check(ok, f"[{tag}] case.toml: seven materials with Tables 4.2 / 4.3 values, c_M law a=1.0044e-2 b=1.1347")
     ist = case.get("initial_stress", {})
-    check(all(k in ist for k in ("lithostatic_gradient", "hydrostatic_gradient", "k0")),
-          f"[{tag}] case.toml initial stress: lithostatic {ist.get('lithostatic_gradient')} MPa/m, "
-          f"hydrostatic {ist.get('hydrostatic_gradient')} MPa/m, k0 {ist.get('k0')}")
+    check(all(k in ist for k in ("lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0")),
+          f"[{tag}] case.toml initial stress: lithostatic {ist.get('lithostatic_gradient_MPa_per_m')} MPa/m, "
+          f"hydrostatic {ist.get('hydrostatic_gradient_MPa_per_m')} MPa/m, k0 {ist.get('k0')}")
     pools = case.get("pool", [])
     check(len(pools) == 2 and all(os.path.isfile(os.path.join(d, p["schedule"])) for p in pools)
-          and case["model"].get("biot_alpha") == 1.0 and case["model"].get("water_unit_weight") == 9810.0,
+          and all(m.get("biot") == 1.0 for m in mats.values())
+          and case.get("water", {}).get("unit_weight_N_per_m3") == 9810.0,
           f"[{tag}] case.toml: two pools with existing schedules, alpha = 1, water unit weight 9810 N/m3")
 
 
