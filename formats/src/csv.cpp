@@ -174,7 +174,10 @@ CsvTable CsvTable::read(InputStream& in) {
     if (fields.size() != t.columns_.size())
       throw InputError(fmt::format("{}:{}", t.name_, line),
                        fmt::format("{} fields, the header has {}", fields.size(), t.columns_.size()));
-    for (auto& f : fields) t.cells_.push_back(std::move(f));
+    for (const std::string& f : fields) {
+      t.text_ += f;
+      t.cell_end_.push_back(t.text_.size());
+    }
     t.line_of_row_.push_back(line);
   }
   return t;

@@ -155,6 +155,9 @@ private:
   void write_cells(std::size_t ncells) {
     std::vector<std::int64_t> connectivity, offsets;
     std::vector<std::uint8_t> types;
+    std::size_t nconn = 0;
+    for (ElementType t : types_) nconn += mesh_.count(t) * nodes_per_element(t);
+    connectivity.reserve(nconn);
     offsets.reserve(ncells);
     types.reserve(ncells);
     for_each_output_cell(mesh_, types_, [&](const ElementBlock& b, std::size_t i) {

@@ -47,7 +47,11 @@ public:
   // Index of `column`; InputError "file.csv: no column 'p_MPa' (columns: date, q_m3)" if absent.
   std::size_t column(std::string_view column) const;
 
-  const std::string& text(std::size_t row, std::size_t col) const { return cells_[row * columns_.size() + col]; }
+  std::string_view text(std::size_t row, std::size_t col) const {
+    const std::size_t i = row * columns_.size() + col;
+    const std::size_t begin = i == 0 ? 0 : cell_end_[i - 1];
+    return std::string_view(text_).substr(begin, cell_end_[i] - begin);
+  }
   // A finite number; InputError("file.csv:LINE", "column 'p_MPa': 'abc' is not a number") otherwise.
   double number(std::size_t row, std::size_t col) const;
   std::int64_t integer(std::size_t row, std::size_t col) const;
@@ -66,7 +70,8 @@ private:
 
   std::string name_;
   std::vector<std::string> columns_;
-  std::vector<std::string> cells_;          // row-major
+  std::string text_;                        // all cells, row-major, back to back (one allocation,
+  std::vector<std::size_t> cell_end_;       // not one per cell: PS tables have millions of cells)
   std::vector<std::size_t> line_of_row_;
 };
 

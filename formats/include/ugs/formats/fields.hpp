@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ugs/formats/error.hpp"
 #include "ugs/formats/field.hpp"
 #include "ugs/formats/mesh.hpp"
 
