@@ -40,6 +40,7 @@ def strata_toml(variant, seed):
     L.append("# polygon, is the default. Paths are relative to this file.")
     L.append(f"crs = {_q(F.CRS)}")
     L.append("min_thickness = 0.5   # m; thinner columns of a unit collapse (pinch-out)")
+    L.append("faults = \"faults.geojson\"   # depth range (top_m, bottom_m) of each plan fault line")
     L.append("")
     for key, fname, name, z, unit, layers in F.SURFACES:
         L.append("[[surface]]")

@@ -1,0 +1,69 @@
+// Faults given as traces (thesis 2.1, 4.3.4; data-samples/po-plain/faults.geojson): a line in plan
+// at elevation trace_z (default top), a dip and a dip direction, a depth range. The fault surface is
+// the trace translated down-dip: at elevation z the trace moves by (trace_z - z) / tan(dip) along the
+// dip direction (azimuth, degrees clockwise from north), from top down to bottom. Each segment of
+// the trace sweeps a planar panel; the panels form the surface.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "ugs/formats/mesh.hpp"
+
+namespace ugs {
+
+struct FaultTrace {
+  std::string name;                                  // group fault:<name>
+  std::string where;                                 // for messages, e.g. "faults.geojson: feature 3"
+  std::vector<std::vector<std::array<double, 2>>> parts;  // polylines (x, y) at trace_z
+  double top = 0, bottom = 0;                        // elevations, m (negative below sea level)
+  double dip_deg = 90, dip_dir_deg = 0;
+  double trace_z = 0;                                // elevation of the trace line
+};
+
+// Checks a trace and drops repeated consecutive points: InputError(where, "fault '<name>': ...")
+// for an empty name, top not above bottom, dip outside (0, 90], parts with fewer than two distinct
+// points, and traces that cross or touch themselves (the surface would intersect itself).
+void check_fault_trace(FaultTrace& trace);
+
+// Reads traces from any OGR vector file: (multi)line features with fields name, top_m, bottom_m,
+// dip_deg, dip_dir_deg and optionally trace_z_m (default top_m), reprojected to `model_wkt` when
+// both have a CRS. Every trace is checked; a name used twice is an error.
+std::vector<FaultTrace> read_fault_traces(const std::string& path, const std::string& model_wkt = "");
+
+// The trace surface as planar panels.
+class FaultSurface {
+public:
+  struct Panel {
+    Point3 a{};                 // trace point at s = 0, t = 0
+    Point3 e{}, w{}, n{};       // along the segment (s: 0..1), down-dip per metre of depth (t), unit normal
+    double ee = 0, ew = 0, ww = 0, det = 0;
+    double length = 0;          // of the segment, m
+    double area_scale = 0;      // |e x w|: area per unit of s * t
+    bool first = false, last = false;  // ends of their part: the surface ends there
+    std::array<double, 6> bbox{};      // of the panel within the depth range
+  };
+  struct Local {
+    double s = 0, t = 0, h = 0; // along the segment, depth below the trace, signed distance from the plane
+  };
+
+  explicit FaultSurface(const FaultTrace& trace);
+  const std::vector<Panel>& panels() const { return panels_; }
+  Local local(std::size_t panel, const Point3& p) const;
+  // Depth range below the trace: t0 = trace_z - top, t1 = trace_z - bottom.
+  double t0() const { return t0_; }
+  double t1() const { return t1_; }
+  // Side 1 -> side 2 normal: down and against the dip direction (side 1 = hanging wall).
+  const Point3& reference_normal() const { return normal_; }
+  // Distance from p to the surface (to the nearest panel, within its ends and, when
+  // `within_depth`, between top and bottom; otherwise the panels extend up and down without end).
+  double distance(const Point3& p, bool within_depth = true) const;
+  std::array<double, 6> bbox() const;
+
+private:
+  std::vector<Panel> panels_;
+  double t0_ = 0, t1_ = 0;
+  Point3 normal_{};
+};
+
+}  // namespace ugs

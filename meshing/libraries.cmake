@@ -1,0 +1,30 @@
+# Extra links of ugs_meshing: the gmsh SDK (plan meshes), GDAL/OGR (rasters, vector files, CRS) and
+# CGAL (natural-neighbour interpolation of picks, with GMP/MPFR).
+#
+# GDAL loads the serial HDF5. Executables that use only the structured box meshes of this library
+# (solver tests that also link PETSc and its MPI HDF5) must not load it, so gmsh and GDAL are linked
+# "as needed": an executable records them only if it uses code that calls them.
+# The feature is looked up in the directory of each executable that links us: define it in the
+# top-level scope too (meshing/ is added before solver/, tools/ and tests/).
+set(CMAKE_LINK_LIBRARY_USING_ugs_as_needed "LINKER:--push-state,--as-needed" "<LINK_ITEM>" "LINKER:--pop-state")
+set(CMAKE_LINK_LIBRARY_USING_ugs_as_needed_SUPPORTED TRUE)
+set(CMAKE_LINK_LIBRARY_USING_ugs_as_needed "${CMAKE_LINK_LIBRARY_USING_ugs_as_needed}" PARENT_SCOPE)
+set(CMAKE_LINK_LIBRARY_USING_ugs_as_needed_SUPPORTED TRUE PARENT_SCOPE)
+
+find_library(UGS_GMP_LIBRARY gmp REQUIRED)
+find_library(UGS_MPFR_LIBRARY mpfr REQUIRED)
+if(GDAL_LIBRARY)
+  set(_ugs_gdal_file ${GDAL_LIBRARY})
+else()
+  get_target_property(_ugs_gdal_file GDAL::GDAL LOCATION)
+endif()
+# The real file names (libgmsh.so.4.8.4): the same library linked plainly elsewhere (ugs::gmsh) is
+# then another link item, so CMake does not refuse the two features for one item.
+get_filename_component(_ugs_gdal_file ${_ugs_gdal_file} REALPATH)
+get_filename_component(_ugs_gmsh_file ${GMSH_LIBRARY} REALPATH)
+get_target_property(_ugs_gdal_includes GDAL::GDAL INTERFACE_INCLUDE_DIRECTORIES)
+target_include_directories(ugs_meshing SYSTEM PRIVATE ${_ugs_gdal_includes} ${GMSH_INCLUDE_DIR})
+target_link_libraries(ugs_meshing
+  PRIVATE $<BUILD_INTERFACE:CGAL::CGAL>
+  PUBLIC "$<BUILD_INTERFACE:$<LINK_LIBRARY:ugs_as_needed,${_ugs_gdal_file},${_ugs_gmsh_file}>>"
+         "$<INSTALL_INTERFACE:${_ugs_gdal_file};${_ugs_gmsh_file};${UGS_MPFR_LIBRARY};${UGS_GMP_LIBRARY}>")

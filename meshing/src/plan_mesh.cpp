@@ -1,0 +1,437 @@
+// The gmsh side of ugs-mesh2d: OpenCASCADE geometry (domain, regions, constraint lines made
+// conformal by one boolean fragment), size fields (Distance + Threshold around refinements,
+// Restrict inside refined regions, Min of all), 2D meshing, and conversion to ugs::Mesh.
+#include "ugs/meshing/plan_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include <gmsh.h>
+#include <fmt/format.h>
+
+#include "ugs/formats/error.hpp"
+
+namespace ugs {
+
+namespace {
+
+using DimTags = gmsh::vectorpair;
+
+class GmshSession {
+public:
+  explicit GmshSession(bool messages) {
+    gmsh::initialize(0, nullptr, false);  // no user configuration files: same input, same mesh
+    gmsh::option::setNumber("General.Terminal", messages ? 1 : 0);
+    gmsh::option::setNumber("General.Verbosity", messages ? 4 : 0);
+    gmsh::option::setNumber("General.NumThreads", 1);
+  }
+  ~GmshSession() { gmsh::finalize(); }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+};
+
+std::vector<XY> clean_ring(const std::vector<XY>& r) {
+  std::vector<XY> out;
+  for (const auto& p : r)
+    if (out.empty() || p != out.back()) out.push_back(p);
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  return out;
+}
+
+struct Segment {
+  XY a, b;
+};
+
+class PlanMesher {
+public:
+  explicit PlanMesher(const PlanSpec& s) : s_(s) {
+    double xmin = std::numeric_limits<double>::infinity(), ymin = xmin;
+    for (const auto& p : s.domain)
+      for (const auto& q : p.outer) xmin = std::min(xmin, q[0]), ymin = std::min(ymin, q[1]);
+    // A round local origin keeps OpenCASCADE's tolerances meaningful and the shift exact.
+    x0_ = std::floor(xmin / 1000.0) * 1000.0;
+    y0_ = std::floor(ymin / 1000.0) * 1000.0;
+  }
+
+  Mesh run(PlanMeshStats* stats) {
+    build_geometry();
+    fragment();
+    set_sizes();
+    gmsh::model::mesh::generate(2);
+    gmsh::model::mesh::renumberNodes();
+    gmsh::model::mesh::renumberElements();
+    Mesh m = extract();
+    if (stats) {
+      stats->nodes = m.num_nodes();
+      stats->triangles = m.count(ElementType::Triangle);
+      stats->line_elements = m.count(ElementType::Line);
+      stats->min_size = min_size_;
+    }
+    return m;
+  }
+
+private:
+  int point(const XY& p) { return gmsh::model::occ::addPoint(p[0] - x0_, p[1] - y0_, 0); }
+
+  int surface(const geo::Polygon& poly) {
+    std::vector<int> loops;
+    for (std::size_t k = 0; k <= poly.holes.size(); ++k) {
+      const auto ring = clean_ring(k == 0 ? poly.outer : poly.holes[k - 1]);
+      if (ring.size() < 3) {
+        if (k == 0) return -1;
+        continue;
+      }
+      std::vector<int> pts, curves;
+      for (const auto& p : ring) pts.push_back(point(p));
+      for (std::size_t i = 0; i < pts.size(); ++i) curves.push_back(gmsh::model::occ::addLine(pts[i], pts[(i + 1) % pts.size()]));
+      loops.push_back(gmsh::model::occ::addCurveLoop(curves));
+    }
+    return gmsh::model::occ::addPlaneSurface(loops);
+  }
+
+  void build_geometry() {
+    for (const auto& p : s_.domain)
+      if (int t = surface(p); t > 0) domain_in_.push_back({2, t});
+    if (domain_in_.empty()) throw InputError("", "the domain has no polygon with three or more distinct corners");
+    region_in_.resize(s_.regions.size());
+    for (std::size_t r = 0; r < s_.regions.size(); ++r)
+      for (const auto& p : s_.regions[r].polygons)
+        if (int t = surface(p); t > 0) region_in_[r].push_back({2, t});
+    line_in_.resize(s_.lines.size());
+    for (std::size_t l = 0; l < s_.lines.size(); ++l)
+      for (const auto& raw : s_.lines[l].lines) {
+        std::vector<XY> pl;
+        for (const auto& p : raw)
+          if (pl.empty() || p != pl.back()) pl.push_back(p);
+        if (pl.size() < 2) continue;
+        std::vector<int> pts;
+        for (const auto& p : pl) pts.push_back(point(p));
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i)
+          line_in_[l].push_back({1, gmsh::model::occ::addLine(pts[i], pts[i + 1])});
+      }
+  }
+
+  // One boolean fragment makes regions and lines conformal with the domain; the map tells which
+  // pieces each input became.
+  void fragment() {
+    DimTags tools;
+    for (const auto& r : region_in_) tools.insert(tools.end(), r.begin(), r.end());
+    for (const auto& l : line_in_) tools.insert(tools.end(), l.begin(), l.end());
+    std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> became;
+    if (!tools.empty() || domain_in_.size() > 1) {
+      DimTags out;
+      std::vector<DimTags> map;
+      gmsh::model::occ::fragment(domain_in_, tools, out, map);
+      DimTags inputs = domain_in_;
+      inputs.insert(inputs.end(), tools.begin(), tools.end());
+      for (std::size_t i = 0; i < inputs.size() && i < map.size(); ++i) became[inputs[i]] = map[i];
+    } else {
+      for (const auto& d : domain_in_) became[d] = {d};
+    }
+    gmsh::model::occ::synchronize();
+    auto pieces = [&](const DimTags& in) {
+      std::set<int> s;
+      for (const auto& d : in)
+        for (const auto& p : became[d]) s.insert(p.second);
+      return s;
+    };
+    domain_ = pieces(domain_in_);
+    // Pieces of regions outside the domain (clipping leftovers) are dropped.
+    DimTags all;
+    gmsh::model::getEntities(all, 2);
+    DimTags outside;
+    for (const auto& [d, t] : all)
+      if (!domain_.count(t)) outside.push_back({2, t});
+    if (!outside.empty()) {
+      gmsh::model::occ::remove(outside, true);
+      gmsh::model::occ::synchronize();
+    }
+    for (const auto& r : region_in_) {
+      std::set<int> s;
+      for (int t : pieces(r))
+        if (domain_.count(t)) s.insert(t);
+      regions_.push_back(s);
+    }
+    // Curves on a domain surface's boundary or embedded in it; other line pieces lie outside.
+    std::set<int> inside_curves;
+    for (int t : domain_) {
+      DimTags b, e;
+      gmsh::model::getBoundary({{2, t}}, b, false, false, false);
+      for (const auto& [d, c] : b) inside_curves.insert(std::abs(c));
+      gmsh::model::mesh::getEmbedded(2, t, e);
+      for (const auto& [d, c] : e)
+        if (d == 1) inside_curves.insert(c);
+    }
+    DimTags stray;
+    for (const auto& l : line_in_) {
+      std::set<int> s;
+      for (int c : pieces(l)) {
+        if (inside_curves.count(c)) s.insert(c);
+        else stray.push_back({1, c});
+      }
+      lines_.push_back(s);
+    }
+    if (!stray.empty()) {
+      std::sort(stray.begin(), stray.end());
+      stray.erase(std::unique(stray.begin(), stray.end()), stray.end());
+      gmsh::model::occ::remove(stray, true);
+      gmsh::model::occ::synchronize();
+    }
+  }
+
+  std::vector<double> as_doubles(const std::set<int>& s) { return std::vector<double>(s.begin(), s.end()); }
+
+  double longest_curve(const std::set<int>& curves) {
+    double L = 0;
+    for (int c : curves) {
+      double x0, y0, z0, x1, y1, z1;
+      gmsh::model::getBoundingBox(1, c, x0, y0, z0, x1, y1, z1);
+      L = std::max(L, std::hypot(x1 - x0, y1 - y0));
+    }
+    return L;
+  }
+
+  // Size s at distance 0 from `curves`, growing by `grading` per metre up to hmax.
+  int graded_field(const std::set<int>& curves, double size) {
+    const int d = gmsh::model::mesh::field::add("Distance");
+    gmsh::model::mesh::field::setNumbers(d, "CurvesList", as_doubles(curves));
+    const double n = std::clamp(std::ceil(longest_curve(curves) / (0.5 * size)) + 1, 10.0, 4000.0);
+    gmsh::model::mesh::field::setNumber(d, "NumPointsPerCurve", n);
+    const int t = gmsh::model::mesh::field::add("Threshold");
+    gmsh::model::mesh::field::setNumber(t, "InField", d);
+    gmsh::model::mesh::field::setNumber(t, "SizeMin", size);
+    gmsh::model::mesh::field::setNumber(t, "SizeMax", s_.hmax);
+    gmsh::model::mesh::field::setNumber(t, "DistMin", 0);
+    gmsh::model::mesh::field::setNumber(t, "DistMax", std::max((s_.hmax - size) / s_.grading, 1e-6));
+    return t;
+  }
+
+  void set_sizes() {
+    std::vector<double> fields;
+    min_size_ = s_.hmax;
+    for (std::size_t r = 0; r < s_.regions.size(); ++r) {
+      const double size = s_.regions[r].size;
+      if (!(size > 0) || regions_[r].empty() || size >= s_.hmax) continue;
+      min_size_ = std::min(min_size_, size);
+      DimTags surf, bnd;
+      for (int t : regions_[r]) surf.push_back({2, t});
+      gmsh::model::getBoundary(surf, bnd, true, false, false);
+      std::set<int> outline;
+      for (const auto& [d, c] : bnd) outline.insert(std::abs(c));
+      fields.push_back(graded_field(outline, size));
+      // Inside: the constant size, on the region's surfaces and on the curves and points in them.
+      std::set<int> curves, points;
+      for (int t : regions_[r]) {
+        DimTags b, e, pts;
+        gmsh::model::getBoundary({{2, t}}, b, false, false, false);
+        gmsh::model::mesh::getEmbedded(2, t, e);
+        for (const auto& [d, c] : b) curves.insert(std::abs(c));
+        for (const auto& [d, c] : e) (d == 1 ? curves : points).insert(c);
+        gmsh::model::getBoundary({{2, t}}, pts, false, false, true);
+        for (const auto& [d, p] : pts)
+          if (d == 0) points.insert(std::abs(p));
+      }
+      for (int c : curves) {
+        DimTags pts;
+        gmsh::model::getBoundary({{1, c}}, pts, false, false, false);
+        for (const auto& [d, p] : pts) points.insert(std::abs(p));
+      }
+      const int f = gmsh::model::mesh::field::add("MathEval");
+      gmsh::model::mesh::field::setString(f, "F", fmt::format("{:.17g}", size));
+      const int rf = gmsh::model::mesh::field::add("Restrict");
+      gmsh::model::mesh::field::setNumber(rf, "InField", f);
+      gmsh::model::mesh::field::setNumbers(rf, "SurfacesList", as_doubles(regions_[r]));
+      gmsh::model::mesh::field::setNumbers(rf, "CurvesList", as_doubles(curves));
+      gmsh::model::mesh::field::setNumbers(rf, "PointsList", as_doubles(points));
+      fields.push_back(rf);
+    }
+    for (std::size_t l = 0; l < s_.lines.size(); ++l) {
+      const double size = s_.lines[l].size;
+      if (!(size > 0) || lines_[l].empty() || size >= s_.hmax) continue;
+      min_size_ = std::min(min_size_, size);
+      fields.push_back(graded_field(lines_[l], size));
+    }
+    int background;
+    if (fields.empty()) {
+      background = gmsh::model::mesh::field::add("MathEval");
+      gmsh::model::mesh::field::setString(background, "F", fmt::format("{:.17g}", s_.hmax));
+    } else {
+      background = gmsh::model::mesh::field::add("Min");
+      gmsh::model::mesh::field::setNumbers(background, "FieldsList", fields);
+    }
+    gmsh::model::mesh::field::setAsBackgroundMesh(background);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", s_.hmax);
+    gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh::option::setNumber("Mesh.Algorithm", s_.algorithm);
+  }
+
+  Mesh extract() {
+    // Groups: the domain, each region, each line group (and region outlines as line groups).
+    struct Group {
+      int dim;
+      std::string name;
+      std::set<int> entities;
+      std::vector<Segment> direction;   // input segments giving line elements their direction
+    };
+    std::vector<Group> groups;
+    auto add_group = [&](int dim, const std::string& name, const std::set<int>& ents, std::vector<Segment> dir = {}) {
+      if (ents.empty()) return;
+      for (auto& g : groups)
+        if (g.dim == dim && g.name == name) {
+          g.entities.insert(ents.begin(), ents.end());
+          g.direction.insert(g.direction.end(), dir.begin(), dir.end());
+          return;
+        }
+      groups.push_back({dim, name, ents, std::move(dir)});
+    };
+    add_group(2, "region:" + s_.domain_name, domain_);
+    for (std::size_t r = 0; r < s_.regions.size(); ++r) {
+      add_group(2, "region:" + s_.regions[r].name, regions_[r]);
+      if (s_.regions[r].outline_group.empty() || regions_[r].empty()) continue;
+      DimTags surf, bnd;
+      for (int t : regions_[r]) surf.push_back({2, t});
+      gmsh::model::getBoundary(surf, bnd, true, false, false);
+      std::set<int> outline;
+      for (const auto& [d, c] : bnd) outline.insert(std::abs(c));
+      std::vector<Segment> dir;
+      for (const auto& p : s_.regions[r].polygons) {
+        const auto ring = clean_ring(p.outer);
+        for (std::size_t i = 0; i < ring.size(); ++i) dir.push_back({ring[i], ring[(i + 1) % ring.size()]});
+      }
+      add_group(1, s_.regions[r].outline_group, outline, std::move(dir));
+    }
+    for (std::size_t l = 0; l < s_.lines.size(); ++l) {
+      std::vector<Segment> dir;
+      for (const auto& pl : s_.lines[l].lines)
+        for (std::size_t i = 0; i + 1 < pl.size(); ++i)
+          if (pl[i] != pl[i + 1]) dir.push_back({pl[i], pl[i + 1]});
+      add_group(1, s_.lines[l].group, lines_[l], std::move(dir));
+    }
+
+    Mesh m;
+    std::vector<std::size_t> node_tags;
+    std::vector<double> coords, param;
+    gmsh::model::mesh::getNodes(node_tags, coords, param, -1, -1, false, false);
+    std::unordered_map<std::size_t, std::uint32_t> index;
+    index.reserve(node_tags.size());
+    {
+      std::vector<std::size_t> order(node_tags.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](auto a, auto b) { return node_tags[a] < node_tags[b]; });
+      for (auto i : order) {
+        index[node_tags[i]] = static_cast<std::uint32_t>(m.nodes.size());
+        m.node_tags.push_back(node_tags[i]);
+        m.nodes.push_back({coords[3 * i] + x0_, coords[3 * i + 1] + y0_, 0.0});
+      }
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g) m.physicals.push_back({groups[g].dim, static_cast<int>(g + 1), groups[g].name});
+    // Entities: every gmsh surface of the domain and every grouped curve, with all its groups.
+    std::map<std::pair<int, int>, std::vector<int>> entity_groups;
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      for (int t : groups[g].entities) entity_groups[{groups[g].dim, t}].push_back(static_cast<int>(g + 1));
+    for (const auto& [dt, phys] : entity_groups) {
+      const auto [dim, tag] = dt;
+      m.entities.push_back({dim, tag, phys, {}});
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> etags, enodes;
+      gmsh::model::mesh::getElements(types, etags, enodes, dim, tag);
+      const ElementType want = dim == 2 ? ElementType::Triangle : ElementType::Line;
+      for (std::size_t k = 0; k < types.size(); ++k) {
+        if (types[k] != static_cast<int>(want)) {
+          throw ComputeError(fmt::format("gmsh produced elements of type {} on {} {}; expected {}", types[k],
+                                         dim == 2 ? "surface" : "curve", tag, element_name(want)));
+        }
+        ElementBlock& b = m.block(dim, tag, want);
+        const int npe = b.npe();
+        for (std::size_t e = 0; e < etags[k].size(); ++e) {
+          std::array<std::uint32_t, 3> n{};
+          for (int j = 0; j < npe; ++j) n[j] = index.at(enodes[k][e * npe + j]);
+          if (dim == 2) {
+            const auto &A = m.nodes[n[0]], &B = m.nodes[n[1]], &C = m.nodes[n[2]];
+            if ((B[0] - A[0]) * (C[1] - A[1]) - (B[1] - A[1]) * (C[0] - A[0]) < 0) std::swap(n[1], n[2]);
+          } else {
+            orient_line(n, m, groups, phys);
+          }
+          b.tags.push_back(etags[k][e]);
+          b.nodes.insert(b.nodes.end(), n.begin(), n.begin() + npe);
+        }
+      }
+    }
+    // Blocks in a stable order: triangles first, then lines, each by entity tag.
+    std::stable_sort(m.blocks.begin(), m.blocks.end(), [](const ElementBlock& a, const ElementBlock& b) {
+      if (a.entity_dim != b.entity_dim) return a.entity_dim > b.entity_dim;
+      return a.entity_tag < b.entity_tag;
+    });
+    std::stable_sort(m.entities.begin(), m.entities.end(), [](const Entity& a, const Entity& b) {
+      return std::pair(a.dim, a.tag) < std::pair(b.dim, b.tag);
+    });
+    // Keep only the nodes the elements use (points of removed pieces may leave some).
+    std::vector<char> used(m.num_nodes(), 0);
+    for (const auto& b : m.blocks)
+      for (auto n : b.nodes) used[n] = 1;
+    if (std::find(used.begin(), used.end(), 0) != used.end()) {
+      std::vector<std::uint32_t> remap(m.num_nodes(), UINT32_MAX);
+      Mesh k;
+      for (std::uint32_t i = 0; i < m.num_nodes(); ++i)
+        if (used[i]) {
+          remap[i] = static_cast<std::uint32_t>(k.nodes.size());
+          k.nodes.push_back(m.nodes[i]);
+          k.node_tags.push_back(m.node_tags[i]);
+        }
+      for (auto& b : m.blocks)
+        for (auto& n : b.nodes) n = remap[n];
+      m.nodes = std::move(k.nodes);
+      m.node_tags = std::move(k.node_tags);
+    }
+    m.update_entity_bboxes();
+    return m;
+  }
+
+  // Gives a line element the direction of the input segment nearest to its midpoint.
+  template <class G>
+  static void orient_line(std::array<std::uint32_t, 3>& n, const Mesh& m, const std::vector<G>& groups,
+                          const std::vector<int>& phys) {
+    const auto &A = m.nodes[n[0]], &B = m.nodes[n[1]];
+    const XY mid{0.5 * (A[0] + B[0]), 0.5 * (A[1] + B[1])};
+    double best = std::numeric_limits<double>::infinity();
+    const Segment* seg = nullptr;
+    for (int p : phys)
+      for (const auto& s : groups[p - 1].direction) {
+        const double dx = s.b[0] - s.a[0], dy = s.b[1] - s.a[1], L2 = dx * dx + dy * dy;
+        double t = L2 > 0 ? ((mid[0] - s.a[0]) * dx + (mid[1] - s.a[1]) * dy) / L2 : 0.0;
+        t = std::clamp(t, 0.0, 1.0);
+        const double ex = s.a[0] + t * dx - mid[0], ey = s.a[1] + t * dy - mid[1], d2 = ex * ex + ey * ey;
+        if (d2 < best) best = d2, seg = &s;
+      }
+    if (seg && (B[0] - A[0]) * (seg->b[0] - seg->a[0]) + (B[1] - A[1]) * (seg->b[1] - seg->a[1]) < 0) std::swap(n[0], n[1]);
+  }
+
+  const PlanSpec& s_;
+  double x0_ = 0, y0_ = 0, min_size_ = 0;
+  DimTags domain_in_;
+  std::vector<DimTags> region_in_, line_in_;
+  std::set<int> domain_;
+  std::vector<std::set<int>> regions_, lines_;
+};
+
+}  // namespace
+
+Mesh make_plan_mesh(const PlanSpec& spec, PlanMeshStats* stats) {
+  if (!(spec.hmax > 0) || !std::isfinite(spec.hmax)) throw InputError("", "hmax must be a size in metres, > 0");
+  if (!(spec.grading > 0) || !std::isfinite(spec.grading)) throw InputError("", "grading must be > 0");
+  if (spec.domain.empty()) throw InputError("", "the domain is empty");
+  GmshSession session(spec.gmsh_messages);
+  try {
+    return PlanMesher(spec).run(stats);
+  } catch (const std::string& e) {  // how the gmsh 4.8 API reports errors
+    throw ComputeError("gmsh failed to mesh the plan: " + (e.empty() ? std::string("no message") : e));
+  }
+}
+
+}  // namespace ugs

@@ -1,0 +1,423 @@
+#include "ugs/meshing/strata.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/toml_reader.hpp"
+#include "ugs/meshing/geodata.hpp"
+#include "ugs/meshing/natural_neighbour.hpp"
+
+namespace ugs {
+
+namespace {
+
+void check_name(const TomlTable& t, const std::string& key, const std::string& name) {
+  if (name.empty()) throw t.error(key, "must not be empty");
+  if (name.find_first_of("\"\n\r") != std::string::npos) throw t.error(key, "must not contain quotes or line breaks");
+}
+
+}  // namespace
+
+Strata read_strata(const std::string& path) {
+  const TomlTable root = TomlTable::parse_file(path);
+  root.reject_unknown({"crs", "min_thickness", "order_tolerance", "material_overlap", "surface", "unit", "material",
+                       "faults", "fault"});
+  Strata s;
+  s.file = path;
+  if (root.has("crs")) {
+    s.crs = root.string("crs");
+    s.crs_where = root.where("crs");
+  }
+  s.min_thickness = root.number_or("min_thickness", 0.5);
+  if (!(s.min_thickness >= 0) || !std::isfinite(s.min_thickness))
+    throw root.error("min_thickness", "must be a thickness in metres, >= 0");
+  s.order_tolerance = root.number_or("order_tolerance", 1.0);
+  if (!(s.order_tolerance >= 0) || !std::isfinite(s.order_tolerance))
+    throw root.error("order_tolerance", "must be a distance in metres, >= 0");
+  if (auto o = root.string_opt("material_overlap")) {
+    if (*o == "first") s.overlap_first_wins = true;
+    else if (*o != "error") throw root.error("material_overlap", "must be \"error\" or \"first\"");
+  }
+
+  std::set<std::string> names;
+  for (const auto& t : root.tables("surface")) {
+    t.reject_unknown({"name", "raster", "band", "constant", "picks", "unconformity"});
+    StrataSurface f;
+    f.where = t.where();
+    f.name = t.string("name");
+    check_name(t, "name", f.name);
+    if (!names.insert(f.name).second) throw t.error("name", "surface '" + f.name + "' is defined twice");
+    const int sources = t.has("raster") + t.has("constant") + t.has("picks");
+    if (sources != 1)
+      throw InputError(f.where, fmt::format("surface '{}': give exactly one of raster, constant or picks", f.name));
+    if (t.has("raster")) {
+      f.source = StrataSurface::Source::Raster;
+      f.path = resolve_relative(path, t.string("raster"));
+      const long long band = t.integer_opt("band").value_or(1);
+      if (band < 1) throw t.error("band", "must be >= 1");
+      f.band = static_cast<int>(band);
+    } else {
+      if (t.has("band")) throw t.error("band", "only a raster surface has bands");
+      if (t.has("constant")) {
+        f.source = StrataSurface::Source::Constant;
+        f.constant = t.number("constant");
+        if (!std::isfinite(f.constant)) throw t.error("constant", "must be a finite elevation (m)");
+      } else {
+        f.source = StrataSurface::Source::Picks;
+        f.path = resolve_relative(path, t.string("picks"));
+      }
+    }
+    f.unconformity = t.boolean_or("unconformity", false);
+    s.surfaces.push_back(std::move(f));
+  }
+  if (s.surfaces.size() < 2) throw InputError(root.where(), "needs at least two [[surface]] tables (top and bottom)");
+
+  names.clear();
+  for (const auto& t : root.tables("unit")) {
+    t.reject_unknown({"name", "layers", "bias"});
+    StrataUnit u;
+    u.where = t.where();
+    u.name = t.string("name");
+    check_name(t, "name", u.name);
+    if (!names.insert(u.name).second) throw t.error("name", "unit '" + u.name + "' is defined twice");
+    const long long layers = t.integer("layers");
+    if (layers < 1) throw t.error("layers", fmt::format("unit '{}' needs at least one sub-layer (got {})", u.name, layers));
+    if (layers > 10000) throw t.error("layers", fmt::format("unit '{}': {} sub-layers is too many", u.name, layers));
+    u.layers = static_cast<int>(layers);
+    u.bias = t.number_or("bias", 1.0);
+    if (!(u.bias > 0) || !std::isfinite(u.bias))
+      throw t.error("bias", fmt::format("unit '{}': the thickness ratio of successive sub-layers must be > 0", u.name));
+    s.units.push_back(std::move(u));
+  }
+  if (s.units.size() + 1 != s.surfaces.size())
+    throw InputError(root.where(), fmt::format("{} [[unit]] tables for {} surfaces: each unit lies between two successive "
+                                               "surfaces, so there must be {}",
+                                               s.units.size(), s.surfaces.size(), s.surfaces.size() - 1));
+
+  for (const auto& t : root.tables("material")) {
+    t.reject_unknown({"name", "units", "polygon", "where"});
+    MaterialRule m;
+    m.where = t.where();
+    m.name = t.string("name");
+    check_name(t, "name", m.name);
+    m.units = t.strings("units");
+    if (m.units.empty()) throw t.error("units", "list at least one unit");
+    for (const auto& u : m.units)
+      if (!names.count(u))
+        throw t.error("units", fmt::format("material '{}': no unit named '{}' (units: {})", m.name, u,
+                                           fmt::join([&] {
+                                             std::vector<std::string> v;
+                                             for (const auto& x : s.units) v.push_back(x.name);
+                                             return v;
+                                           }(),
+                                                     ", ")));
+    if (t.has("polygon")) m.polygon = resolve_relative(path, t.string("polygon"));
+    if (t.has("where")) {
+      if (m.polygon.empty()) throw t.error("where", "filters the features of `polygon`, which is missing");
+      m.filter = t.string("where");
+    }
+    s.materials.push_back(std::move(m));
+  }
+  if (s.materials.empty()) throw InputError(root.where(), "needs at least one [[material]] rule");
+
+  if (root.has("faults")) s.faults_file = resolve_relative(path, root.string("faults"));
+  std::set<std::string> fault_names;
+  for (const auto& t : root.tables("fault")) {
+    t.reject_unknown({"name", "top_m", "bottom_m"});
+    FaultRange f;
+    f.where = t.where();
+    f.name = t.string("name");
+    check_name(t, "name", f.name);
+    if (!fault_names.insert(f.name).second) throw t.error("name", "fault '" + f.name + "' is defined twice");
+    f.top = t.number("top_m");
+    f.bottom = t.number("bottom_m");
+    if (!(f.top >= f.bottom)) throw t.error("bottom_m", fmt::format("fault '{}': bottom_m lies above top_m", f.name));
+    s.faults.push_back(std::move(f));
+  }
+  return s;
+}
+
+namespace {
+
+std::string column_at(const Plan& plan, std::uint32_t c) {
+  return fmt::format("plan node {} at x={:.2f}, y={:.2f}", plan.node_tags[c], plan.xy[c][0], plan.xy[c][1]);
+}
+
+// "35 of the 13,532 plan columns, within x 684800 .. 686000, y 4950000 .. 4954000 (first: plan node ...)"
+std::string which_columns(const Plan& plan, const std::vector<std::uint32_t>& cols) {
+  double x0 = plan.xy[cols[0]][0], x1 = x0, y0 = plan.xy[cols[0]][1], y1 = y0;
+  for (auto c : cols) {
+    x0 = std::min(x0, plan.xy[c][0]), x1 = std::max(x1, plan.xy[c][0]);
+    y0 = std::min(y0, plan.xy[c][1]), y1 = std::max(y1, plan.xy[c][1]);
+  }
+  return fmt::format("{} of the {} plan columns, within x {:.0f} .. {:.0f}, y {:.0f} .. {:.0f} (first: {})",
+                     thousands(cols.size()), thousands(plan.num_columns()), x0, x1, y0, y1, column_at(plan, cols[0]));
+}
+
+std::vector<double> evaluate_surface(const StrataSurface& s, const Plan& plan, const std::string& model_wkt) {
+  const std::size_t nc = plan.num_columns();
+  auto fail = [&](const std::string& msg) { return InputError(s.where, fmt::format("surface '{}': {}", s.name, msg)); };
+  switch (s.source) {
+    case StrataSurface::Source::Constant: return std::vector<double>(nc, s.constant);
+    case StrataSurface::Source::Raster: {
+      geo::RasterSampling r;
+      try {
+        r = geo::sample_raster(s.path, s.band, plan.xy, model_wkt);
+      } catch (const InputError& e) {
+        throw fail(e.what());
+      }
+      if (!r.outside.empty())
+        throw fail(fmt::format("raster {} ({}) does not cover {}", s.path, r.crs, which_columns(plan, r.outside)));
+      if (!r.nodata.empty())
+        throw fail(fmt::format("raster {} has no-data or NaN values under {}", s.path, which_columns(plan, r.nodata)));
+      return r.values;
+    }
+    case StrataSurface::Source::Picks: {
+      std::vector<std::array<double, 3>> picks;
+      try {
+        const CsvTable t = CsvTable::read(s.path);
+        const auto x = t.numbers("x"), y = t.numbers("y"), z = t.numbers("z");
+        for (std::size_t i = 0; i < x.size(); ++i) picks.push_back({x[i], y[i], z[i]});
+      } catch (const InputError& e) {
+        throw fail(e.what());
+      }
+      std::optional<NaturalNeighbourSurface> nn;
+      try {
+        nn.emplace(picks);
+      } catch (const std::invalid_argument& e) {
+        throw fail(fmt::format("picks {}: {}", s.path, e.what()));
+      }
+      std::vector<double> z(nc);
+      std::vector<std::uint32_t> outside;
+      for (std::uint32_t c = 0; c < nc; ++c) {
+        const auto v = nn->at(plan.xy[c][0], plan.xy[c][1]);
+        if (!v) outside.push_back(c);
+        else z[c] = *v;
+      }
+      if (!outside.empty())
+        throw fail(fmt::format("picks {} do not cover {}: they lie outside the convex hull of the picks", s.path,
+                               which_columns(plan, outside)));
+      return z;
+    }
+  }
+  return {};
+}
+
+// Which triangles (by centroid) lie inside each rule's polygons; empty for rules without polygon.
+std::vector<std::vector<char>> rule_polygons(const Strata& strata, const Plan& plan, const std::string& model_wkt) {
+  std::vector<XY> centroids(plan.triangles.size());
+  for (std::size_t t = 0; t < centroids.size(); ++t) centroids[t] = plan.centroid(t);
+  std::vector<std::vector<char>> inside(strata.materials.size());
+  std::map<std::pair<std::string, std::string>, std::vector<char>> cache;
+  for (std::size_t r = 0; r < strata.materials.size(); ++r) {
+    const auto& rule = strata.materials[r];
+    if (rule.polygon.empty()) continue;
+    auto key = std::pair{rule.polygon, rule.filter};
+    if (auto it = cache.find(key); it != cache.end()) {
+      inside[r] = it->second;
+      continue;
+    }
+    geo::VectorData v;
+    try {
+      v = geo::read_vector(rule.polygon, model_wkt, rule.filter);
+    } catch (const InputError& e) {
+      throw InputError(rule.where, fmt::format("material '{}': {}", rule.name, e.what()));
+    }
+    if (v.features.empty())
+      throw InputError(rule.where, fmt::format("material '{}': {}{} selects no feature", rule.name, rule.polygon,
+                                               rule.filter.empty() ? "" : " with where \"" + rule.filter + "\""));
+    std::vector<geo::Polygon> polys;
+    for (auto& f : v.features) {
+      if (f.polygons.empty())
+        throw InputError(rule.where, fmt::format("material '{}': feature {} of {} is not a polygon", rule.name, f.fid,
+                                                 rule.polygon));
+      for (auto& p : f.polygons) polys.push_back(std::move(p));
+    }
+    const geo::PolygonSet set(std::move(polys));
+    std::vector<char> in(centroids.size());
+    for (std::size_t t = 0; t < centroids.size(); ++t) in[t] = set.contains(centroids[t]);
+    inside[r] = in;
+    cache.emplace(key, std::move(in));
+  }
+  return inside;
+}
+
+}  // namespace
+
+PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
+  PreparedModel pm;
+  const std::size_t nc = plan.num_columns(), nt = plan.triangles.size(), ns = strata.surfaces.size();
+
+  // Model CRS: given, else the first raster's, else EPSG:32632.
+  std::string model_wkt;
+  if (!strata.crs.empty()) {
+    model_wkt = geo::crs_wkt(strata.crs, strata.crs_where);
+  } else {
+    for (const auto& s : strata.surfaces)
+      if (s.source == StrataSurface::Source::Raster) {
+        try {
+          model_wkt = geo::raster_crs(s.path);
+        } catch (const InputError& e) {
+          throw InputError(s.where, fmt::format("surface '{}': {}", s.name, e.what()));
+        }
+        if (!model_wkt.empty()) break;
+      }
+    if (model_wkt.empty()) model_wkt = geo::crs_wkt("EPSG:32632", strata.file);
+    pm.notes.push_back("model CRS " + geo::crs_label(model_wkt) + " (no crs in " + strata.file + ")");
+  }
+  pm.crs = geo::crs_label(model_wkt);
+
+  // Surfaces at the columns, then the order rule and pinch-outs.
+  auto& z = pm.input.surfaces;
+  z.reserve(ns);
+  std::vector<StackSurface> stack;
+  for (const auto& s : strata.surfaces) {
+    z.push_back(evaluate_surface(s, plan, model_wkt));
+    stack.push_back({s.name, s.where, s.unconformity});
+  }
+  pm.stack = apply_stack_rules(z, stack, plan, {strata.order_tolerance, strata.min_thickness});
+  for (std::size_t i = 0; i < ns; ++i) {
+    if (pm.stack.truncated[i])
+      pm.notes.push_back(fmt::format("surface '{}' truncated by an unconformity at {} columns", strata.surfaces[i].name,
+                                     thousands(pm.stack.truncated[i])));
+    if (pm.stack.clamped[i])
+      pm.notes.push_back(fmt::format("surface '{}' lowered onto '{}' at {} columns (by up to {:.3f} m)",
+                                     strata.surfaces[i].name, strata.surfaces[i - 1].name,
+                                     thousands(pm.stack.clamped[i]), pm.stack.max_clamp[i]));
+  }
+  for (std::size_t u = 0; u < strata.units.size(); ++u) {
+    if (pm.stack.collapsed[u] == nc)
+      pm.warnings.push_back(fmt::format("unit '{}' is thinner than min_thickness ({} m) everywhere: it has no elements",
+                                        strata.units[u].name, strata.min_thickness));
+    else if (pm.stack.collapsed[u])
+      pm.notes.push_back(fmt::format("unit '{}' pinches out at {} of {} columns", strata.units[u].name,
+                                     thousands(pm.stack.collapsed[u]), thousands(nc)));
+  }
+  for (const auto& u : strata.units) pm.input.units.push_back({u.name, u.layers, u.bias});
+
+  // Materials: the first rule naming the unit whose polygon holds the triangle's centroid.
+  std::map<std::string, std::size_t> unit_index;
+  for (std::size_t u = 0; u < strata.units.size(); ++u) unit_index[strata.units[u].name] = u;
+  std::map<std::string, std::uint32_t> material_index;
+  std::vector<std::uint32_t> rule_material(strata.materials.size());
+  for (std::size_t r = 0; r < strata.materials.size(); ++r) {
+    auto [it, fresh] = material_index.emplace(strata.materials[r].name, pm.input.materials.size());
+    if (fresh) pm.input.materials.push_back(strata.materials[r].name);
+    rule_material[r] = it->second;
+  }
+  const auto inside = rule_polygons(strata, plan, model_wkt);
+  std::vector<std::vector<std::size_t>> rules_of_unit(strata.units.size());
+  for (std::size_t r = 0; r < strata.materials.size(); ++r)
+    for (const auto& u : strata.materials[r].units) rules_of_unit[unit_index.at(u)].push_back(r);
+
+  pm.input.material_of.assign(strata.units.size(), std::vector<std::uint32_t>(nt));
+  std::vector<std::size_t> rule_used(strata.materials.size(), 0);
+  for (std::size_t u = 0; u < strata.units.size(); ++u) {
+    const auto& rules = rules_of_unit[u];
+    // Partial overlap of two polygon rules naming different materials: which one applies is a
+    // matter of order only, which usually means a digitising mistake.
+    if (!strata.overlap_first_wins)
+      for (std::size_t a = 0; a < rules.size(); ++a)
+        for (std::size_t b = a + 1; b < rules.size(); ++b) {
+          const auto ra = rules[a], rb = rules[b];
+          if (inside[ra].empty() || inside[rb].empty() || rule_material[ra] == rule_material[rb]) continue;
+          std::size_t both = 0, only_a = 0, only_b = 0, first_both = 0;
+          for (std::size_t t = 0; t < nt; ++t) {
+            if (inside[ra][t] && inside[rb][t] && both++ == 0) first_both = t;
+            only_a += inside[ra][t] && !inside[rb][t];
+            only_b += !inside[ra][t] && inside[rb][t];
+          }
+          if (both && only_a && only_b) {
+            const XY c = plan.centroid(first_both);
+            throw InputError(strata.materials[rb].where,
+                             fmt::format("material rules '{}' ({}) and '{}' overlap partly in unit '{}': {} plan triangles "
+                                         "lie in both polygons (first at x={:.2f}, y={:.2f}) while each also covers "
+                                         "triangles the other does not; nest or separate the polygons, or set "
+                                         "material_overlap = \"first\" to let the first rule win",
+                                         strata.materials[ra].name, strata.materials[ra].where, strata.materials[rb].name,
+                                         strata.units[u].name, thousands(both), c[0], c[1]));
+          }
+        }
+    for (std::size_t t = 0; t < nt; ++t) {
+      bool found = false;
+      for (auto r : rules)
+        if (inside[r].empty() || inside[r][t]) {
+          pm.input.material_of[u][t] = rule_material[r];
+          ++rule_used[r];
+          found = true;
+          break;
+        }
+      if (!found) {
+        const XY c = plan.centroid(t);
+        throw InputError(strata.file, fmt::format("unit '{}' has no material at plan triangle {} (x={:.2f}, y={:.2f}): "
+                                                  "add a [[material]] rule without polygon for it as the default",
+                                                  strata.units[u].name, plan.triangle_tags[t], c[0], c[1]));
+      }
+    }
+  }
+  for (std::size_t r = 0; r < strata.materials.size(); ++r)
+    if (!rule_used[r])
+      pm.warnings.push_back(fmt::format("{}: material rule '{}' matches no plan triangle", strata.materials[r].where,
+                                        strata.materials[r].name));
+
+  // Faults: the plan's fault:<name> line groups with their depth range.
+  const bool have_ranges = !strata.faults_file.empty() || !strata.faults.empty();
+  std::optional<geo::VectorData> fault_features;
+  for (const auto& g : plan.lines) {
+    if (g.name.rfind("fault:", 0) != 0) continue;
+    VerticalFault f;
+    f.name = g.name.substr(6);
+    f.edges = g.edges;
+    if (!have_ranges) {
+      pm.notes.push_back(fmt::format("fault '{}' spans the whole model height (no depth ranges in {})", f.name, strata.file));
+    } else {
+      bool found = false;
+      for (const auto& r : strata.faults)
+        if (r.name == f.name) {
+          f.top = r.top;
+          f.bottom = r.bottom;
+          found = true;
+        }
+      if (!found && !strata.faults_file.empty()) {
+        if (!fault_features) {
+          try {
+            fault_features = geo::read_vector(strata.faults_file, model_wkt);
+          } catch (const InputError& e) {
+            throw InputError(strata.file, fmt::format("faults: {}", e.what()));
+          }
+        }
+        for (const auto& feat : fault_features->features) {
+          if (feat.text_of("name") != f.name) continue;
+          const auto top = feat.number_of("top_m"), bottom = feat.number_of("bottom_m");
+          if (!top || !bottom)
+            throw InputError(strata.faults_file, fmt::format("fault '{}' (feature {}) needs numeric top_m and bottom_m",
+                                                             f.name, feat.fid));
+          if (!(*top >= *bottom))
+            throw InputError(strata.faults_file, fmt::format("fault '{}' (feature {}): bottom_m lies above top_m",
+                                                             f.name, feat.fid));
+          f.top = *top;
+          f.bottom = *bottom;
+          found = true;
+          break;
+        }
+      }
+      if (!found)
+        throw InputError(strata.file, fmt::format("the plan {} has fault line '{}' but neither [[fault]] tables nor the "
+                                                  "faults file give its depth range (top_m, bottom_m)",
+                                                  plan.source, f.name));
+    }
+    pm.input.faults.push_back(std::move(f));
+  }
+  for (const auto& r : strata.faults)
+    if (!plan.find_line_group("fault:" + r.name))
+      pm.warnings.push_back(fmt::format("{}: fault '{}' is not a line group of the plan {}", r.where, r.name, plan.source));
+  pm.input.plan = &plan;
+  return pm;
+}
+
+}  // namespace ugs

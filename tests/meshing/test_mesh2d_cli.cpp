@@ -1,0 +1,174 @@
+// ugs-mesh2d as users run it: a box or polygon domain, a refinement polygon with its target size,
+// a reservoir trace, a fault and a section (written by the test with OGR). The plan must cover the
+// domain exactly, carry region:/trace:/fault:/section: groups, have every constraint line as mesh
+// edges along the input lines (in their direction), respect the sizes, and reproject inputs given
+// in another CRS. Bad input exits 2 with one line and no output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "geo_fixtures.hpp"
+#include "run_tool.hpp"
+#include "ugs/formats/msh.hpp"
+#include "ugs/meshing/plan.hpp"
+
+namespace fs = std::filesystem;
+using namespace ugs;
+
+namespace {
+
+double seg_distance(const XY& p, const XY& a, const XY& b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double t = std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+  return std::hypot(a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
+}
+
+class Mesh2dCli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = test::temp_dir("mesh2d");
+    test::write_vector(p("refine.geojson").string(),
+                       {{"reservoir", "POLYGON ((682000 4951000, 684000 4951000, 684000 4952500, 682000 4952500, 682000 4951000))",
+                         {{"size_m", 100}}}});
+    test::write_vector(p("traces.geojson").string(),
+                       {{"Pool A", "POLYGON ((682500 4951500, 683500 4951400, 683600 4952200, 682600 4952300, 682500 4951500))", {}}});
+    test::write_vector(p("faults.geojson").string(),
+                       {{"f1", "LINESTRING (680500 4950500, 683000 4952000, 685500 4953500)",
+                         {{"top_m", -500}, {"bottom_m", -5000}, {"dip_deg", 60}, {"dip_dir_deg", 15}}},
+                        {"f2", "LINESTRING (689000 4950500, 690000 4951000)", {}}});  // outside: ignored
+    test::write_vector(p("sections.geojson").string(), {{"A-A", "LINESTRING (685000 4950200, 681000 4953800)", {}}});
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path p(const std::string& f) const { return dir_ / f; }
+  static std::string tool() { return test::tool("ugs-mesh2d"); }
+
+  void expect_bad(const std::string& args, const std::string& fragment) {
+    const auto out = p("bad.msh");
+    const auto r = test::run(tool() + " " + args + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(std::regex_match(r.err, std::regex("^ugs-mesh2d: error: [^\n]+\n$"))) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(Mesh2dCli, GradedPlanWithRegionsAndConstraintLines) {
+  const auto out = p("plan.msh");
+  const auto r = test::run(tool() + " --box 680000/686000/4950000/4954000 --hmax 800 --grading 0.3 --refine " +
+                           p("refine.geojson").string() + " --trace " + p("traces.geojson").string() + " --fault " +
+                           p("faults.geojson").string() + " --section " + p("sections.geojson").string() + " -o " +
+                           out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("outside the domain; ignored"), std::string::npos) << r.err;  // f2
+  const Mesh m = read_msh(out.string());
+  const Plan plan = plan_from_mesh(m, "plan");  // valid: no inverted, duplicate or overlapping triangles
+
+  for (const auto& [dim, name] : std::vector<std::pair<int, std::string>>{
+           {2, "region:domain"}, {2, "region:reservoir"}, {2, "region:Pool A"}, {1, "trace:Pool A"},
+           {1, "fault:f1"}, {1, "section:A-A"}})
+    EXPECT_NE(m.find_physical(dim, name), nullptr) << name;
+  EXPECT_EQ(m.find_physical(1, "fault:f2"), nullptr);
+
+  // The triangles tile the box.
+  double area = 0;
+  for (std::size_t t = 0; t < plan.triangles.size(); ++t) area += plan.area(t);
+  EXPECT_NEAR(area, 6000.0 * 4000.0, 1e-6 * 24e6);
+
+  // Sizes: fine inside the refinement, coarser far away, never beyond hmax (with gmsh's slack).
+  double max_in = 0, max_all = 0;
+  for (std::size_t t = 0; t < plan.triangles.size(); ++t) {
+    const auto& tri = plan.triangles[t];
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto &a = plan.xy[tri[k]], &b = plan.xy[tri[(k + 1) % 3]];
+      longest = std::max(longest, std::hypot(a[0] - b[0], a[1] - b[1]));
+    }
+    const XY c = plan.centroid(t);
+    if (c[0] > 682100 && c[0] < 683900 && c[1] > 4951100 && c[1] < 4952400) max_in = std::max(max_in, longest);
+    max_all = std::max(max_all, longest);
+  }
+  EXPECT_LT(max_in, 1.6 * 100);
+  EXPECT_GT(max_all, 400.0);
+  EXPECT_LT(max_all, 1.6 * 800);
+
+  // Constraint lines are edges of the triangles, lie on the input lines and follow their direction.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const auto& t : plan.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+  const std::vector<XY> f1 = {{680500, 4950500}, {683000, 4952000}, {685500, 4953500}};
+  const PlanLineGroup* g = plan.find_line_group("fault:f1");
+  ASSERT_NE(g, nullptr);
+  double length = 0;
+  for (const auto& [a, b] : g->edges) {
+    EXPECT_TRUE(edges.count(std::minmax(a, b)));
+    for (auto c : {a, b})
+      EXPECT_LT(std::min(seg_distance(plan.xy[c], f1[0], f1[1]), seg_distance(plan.xy[c], f1[1], f1[2])), 1e-6);
+    const double dx = plan.xy[b][0] - plan.xy[a][0], dy = plan.xy[b][1] - plan.xy[a][1];
+    EXPECT_GT(dx * 5000 + dy * 3000, 0.0);  // along the trace, from west to east
+    length += std::hypot(dx, dy);
+  }
+  EXPECT_NEAR(length, 2 * std::hypot(2500.0, 1500.0), 1e-6);
+  for (const auto& [a, b] : plan.find_line_group("section:A-A")->edges) EXPECT_TRUE(edges.count(std::minmax(a, b)));
+  for (const auto& [a, b] : plan.find_line_group("trace:Pool A")->edges) EXPECT_TRUE(edges.count(std::minmax(a, b)));
+  // The trace region is bounded by its outline: every Pool A triangle's centroid lies inside it.
+  EXPECT_EQ(m.provenance.size(), 1u);
+}
+
+TEST_F(Mesh2dCli, InputsInAnotherCrsAreReprojected) {
+  // A domain given in geographic coordinates, meshed in UTM 32N.
+  std::string wkt = "POLYGON ((";
+  const std::vector<XY> utm = {{680000, 4950000}, {684000, 4950000}, {684000, 4953000}, {680000, 4953000}, {680000, 4950000}};
+  for (std::size_t i = 0; i < utm.size(); ++i) {
+    const auto g = test::transform_point(utm[i][0], utm[i][1], 32632, 4326);
+    wkt += fmt::format("{}{:.15f} {:.15f}", i ? ", " : "", g[0], g[1]);
+  }
+  test::write_vector(p("domain4326.geojson").string(), {{"field", wkt + "))", {{"size_m", 1000}}}}, 4326);
+  const auto out = p("plan.msh");
+  const auto r = test::run(tool() + " --domain " + p("domain4326.geojson").string() + " --crs EPSG:32632 -v -o " +
+                           out.string() + " --ascii");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh m = read_msh(out.string());
+  double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+  for (const auto& x : m.nodes) xmin = std::min(xmin, x[0]), xmax = std::max(xmax, x[0]), ymin = std::min(ymin, x[1]), ymax = std::max(ymax, x[1]);
+  EXPECT_NEAR(xmin, 680000, 1e-4);
+  EXPECT_NEAR(xmax, 684000, 1e-4);
+  EXPECT_NEAR(ymin, 4950000, 1e-4);
+  EXPECT_NEAR(ymax, 4953000, 1e-4);
+  EXPECT_NE(m.find_physical(2, "region:field"), nullptr);  // named by the feature, hmax from size_m
+  // Without --crs the model CRS is the domain's, which is not projected: refused.
+  const auto bad = test::run(tool() + " --domain " + p("domain4326.geojson").string() + " -o " + p("x.msh").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("not projected"), std::string::npos) << bad.err;
+}
+
+TEST_F(Mesh2dCli, SameInputSameBytes) {
+  const std::string cmd = tool() + " --box 680000/686000/4950000/4954000 --hmax 700 --refine " + p("refine.geojson").string() +
+                          " --fault " + p("faults.geojson").string() + " -q";
+  ASSERT_EQ(test::run(cmd + " > " + p("a.msh").string()).exit_code, 0);  // same command line: it is recorded
+  ASSERT_EQ(test::run(cmd + " > " + p("b.msh").string()).exit_code, 0);
+  EXPECT_TRUE(test::slurp(p("a.msh")) == test::slurp(p("b.msh")));
+}
+
+TEST_F(Mesh2dCli, BadInputs) {
+  expect_bad("--hmax 100", "give the domain");
+  expect_bad("--box 1/0/0/1 --hmax 100", "--box: xmin/xmax/ymin/ymax must be increasing");
+  expect_bad("--box 0/1/0 --hmax 100", "expected xmin/xmax/ymin/ymax");
+  expect_bad("--box 0/1/a/1 --hmax 100", "'a' is not a number");
+  expect_bad("--box 0/1000/0/1000", "give --hmax");
+  expect_bad("--box 0/1000/0/1000 --hmax 100 --refine " + p("nope.geojson").string(), "nope.geojson: cannot open");
+  expect_bad("--box 680000/686000/4950000/4954000 --hmax 500 --refine " + p("traces.geojson").string(),
+             "has no 'size_m' field");
+  expect_bad("--box 680000/686000/4950000/4954000 --hmax 500 --fault " + p("refine.geojson").string(),
+             "is not a line");
+  expect_bad("--box 680000/686000/4950000/4954000 --hmax 500 --crs EPSG:99999", "unknown coordinate reference system");
+  expect_bad("--box 680000/686000/4950000/4954000 --hmax -5", "--hmax");
+}
