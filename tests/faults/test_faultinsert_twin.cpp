@@ -17,14 +17,12 @@ TEST(FaultInsertTwin, RegionalAndLocalFaultsOfTheSmallTwin) {
   const auto dir = temp_dir("faultinsert-twin");
   const std::string src = std::string(UGS_SOURCE_DIR) + "/data-samples/po-plain";
   ASSERT_EQ(run("/usr/bin/python3 " + src + "/generate.py --small --out " + dir.string() + " -q").exit_code, 0);
-  // The twin's strata file gives no depth ranges; the faults file has them.
-  spit(dir / "strata-faults.toml", "faults = \"faults.geojson\"\n" + slurp(dir / "strata.toml"));
   const std::string cd = "cd " + dir.string() + " && ";
   auto r = run(cd + tool("ugs-mesh2d") +
                " --domain domain.geojson --refine refinement.geojson --trace reservoir_traces.geojson"
                " --fault faults.geojson --section sections.geojson -q -o plan.msh");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run(cd + tool("ugs-meshgen") + " plan.msh --strata strata-faults.toml -q -o model.msh");
+  r = run(cd + tool("ugs-meshgen") + " plan.msh --strata strata.toml -q -o model.msh");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run(cd + "cat model.msh | " + tool("ugs-faultinsert") + " --faults faults.geojson > faulted.msh");
   ASSERT_EQ(r.exit_code, 0) << r.err;
