@@ -55,8 +55,8 @@ double polygon_area(const std::vector<P2>& p) {
 // Area (m2) of a polygon in panel coordinates (s, t) within the depth range, and within s in [0, 1]
 // on the sides where the surface ends (all sides when `all_sides`).
 double clipped_area(std::vector<P2> poly, const FaultSurface& S, const FaultSurface::Panel& p, bool all_sides) {
-  poly = clip(poly, 0, 1, -S.t0());
-  poly = clip(poly, 0, -1, S.t1());
+  poly = clip(poly, 0, 1, -p.t0);
+  poly = clip(poly, 0, -1, p.t1);
   if (p.first || all_sides) poly = clip(poly, 1, 0, 0);
   if (p.last || all_sides) poly = clip(poly, -1, 0, 1);
   return poly.size() < 3 ? 0.0 : polygon_area(poly) * p.area_scale;
@@ -204,7 +204,7 @@ private:
           const auto& p = S.panels()[i];
           const auto l = S.local(i, x);
           if (std::abs(l.h) <= tol(v) && l.s * p.length >= -mg && l.s * p.length <= p.length + mg &&
-              l.t >= S.t0() - mg && l.t <= S.t1() + mg) {
+              l.t >= p.t0 - mg && l.t <= p.t1 + mg) {
             near_mask_[v] |= std::uint64_t{1} << k;
             break;
           }
@@ -281,7 +281,7 @@ private:
       const double area = clipped_area(poly, S, p, false);
       if (area <= 0) continue;
       out.covered += area;
-      const bool inside = lg.t >= S.t0() && lg.t <= S.t1() && (!p.first || lg.s >= 0) && (!p.last || lg.s <= 1);
+      const bool inside = lg.t >= p.t0 && lg.t <= p.t1 && (!p.first || lg.s >= 0) && (!p.last || lg.s <= 1);
       if (!inside) continue;
       // Oriented along the reference normal (side 1 -> side 2).
       std::array<std::uint32_t, 3> t = f;

@@ -81,6 +81,25 @@ void check_fault_trace(FaultTrace& tr) {
   if (!(tr.dip_deg > 0 && tr.dip_deg <= 90))
     throw fail(fmt::format("dip_deg {} is outside (0, 90] (a horizontal fault has no trace)", tr.dip_deg));
   tr.dip_dir_deg = std::fmod(std::fmod(tr.dip_dir_deg, 360.0) + 360.0, 360.0);
+  if (!tr.pieces.empty()) {
+    double above = tr.top;
+    for (std::size_t i = 0; i < tr.pieces.size(); ++i) {
+      const auto& pc = tr.pieces[i];
+      if (!std::isfinite(pc.bottom) || !std::isfinite(pc.dip_deg))
+        throw fail(fmt::format("listric piece {}: bottom_m and dip_deg must be finite numbers", i + 1));
+      if (!(pc.dip_deg > 0 && pc.dip_deg <= 90))
+        throw fail(fmt::format("listric piece {}: dip_deg {} is outside (0, 90]", i + 1, pc.dip_deg));
+      if (!(pc.bottom < above))
+        throw fail(fmt::format("listric piece {}: bottom_m ({:.1f}) must lie below the piece above ({:.1f})", i + 1,
+                               pc.bottom, above));
+      above = pc.bottom;
+    }
+    if (std::abs(tr.pieces.back().bottom - tr.bottom) > 1e-9 * (1 + std::abs(tr.bottom)))
+      throw fail(fmt::format("the last listric piece ends at {:.1f}, not at bottom_m ({:.1f})", tr.pieces.back().bottom,
+                             tr.bottom));
+    tr.pieces.back().bottom = tr.bottom;
+    tr.dip_deg = tr.pieces.front().dip_deg;
+  }
   if (tr.parts.empty()) throw fail("the trace has no line");
   // Drop repeated consecutive points.
   double scale = 0;
@@ -142,41 +161,94 @@ void check_fault_trace(FaultTrace& tr) {
   }
 }
 
+bool FaultTrace::vertical() const {
+  for (const auto& p : piece_list())
+    if (p.dip_deg < 90) return false;
+  return true;
+}
+
+std::vector<FaultTrace::Piece> FaultTrace::piece_list() const {
+  if (!pieces.empty()) return pieces;
+  return {Piece{bottom, dip_deg}};
+}
+
+namespace {
+double cot_deg(double dip_deg) {
+  if (dip_deg >= 90) return 0.0;
+  const double d = dip_deg * kPi / 180;
+  return std::cos(d) / std::sin(d);
+}
+}  // namespace
+
+double FaultTrace::offset_at(double z) const {
+  // Piece tops, top to bottom; the offset is the integral of cot(dip) from trace_z down to z.
+  const auto pcs = piece_list();
+  auto integral_from_top = [&](double zz) {  // offset at zz relative to the surface at `top`
+    double off = 0, above = top;
+    for (std::size_t i = 0; i < pcs.size(); ++i) {
+      const bool last = i + 1 == pcs.size();
+      const double below = last ? -std::numeric_limits<double>::infinity() : pcs[i].bottom;
+      const double c = cot_deg(pcs[i].dip_deg);
+      if (i == 0 && zz > above) return -(zz - above) * c;  // above the top: first piece extended
+      if (zz >= below) return off + (above - zz) * c;
+      off += (above - below) * c;
+      above = below;
+    }
+    return off;
+  };
+  return integral_from_top(z) - integral_from_top(trace_z);
+}
+
 FaultSurface::FaultSurface(const FaultTrace& tr) {
-  const double dip = tr.dip_deg * kPi / 180, az = tr.dip_dir_deg * kPi / 180;
+  const double az = tr.dip_dir_deg * kPi / 180;
   const double dx = std::sin(az), dy = std::cos(az);  // horizontal dip direction (azimuth from north)
-  const double cot = tr.dip_deg >= 90 ? 0.0 : std::cos(dip) / std::sin(dip);
   t0_ = tr.trace_z - tr.top;
   t1_ = tr.trace_z - tr.bottom;
-  normal_ = {-dx * std::sin(dip), -dy * std::sin(dip), -std::cos(dip)};
-  const Point3 w{dx * cot, dy * cot, -1.0};
-  for (const auto& part : tr.parts)
-    for (std::size_t i = 0; i + 1 < part.size(); ++i) {
-      Panel p;
-      p.a = {part[i][0], part[i][1], tr.trace_z};
-      p.e = {part[i + 1][0] - part[i][0], part[i + 1][1] - part[i][1], 0.0};
-      p.w = w;
-      const Point3 c = cross(p.e, p.w);
-      p.area_scale = std::sqrt(dot(c, c));
-      p.n = {c[0] / p.area_scale, c[1] / p.area_scale, c[2] / p.area_scale};
-      p.ee = dot(p.e, p.e);
-      p.ew = dot(p.e, p.w);
-      p.ww = dot(p.w, p.w);
-      p.det = p.ee * p.ww - p.ew * p.ew;
-      p.length = std::sqrt(p.ee);
-      p.first = i == 0;
-      p.last = i + 2 == part.size();
-      constexpr double inf = std::numeric_limits<double>::infinity();
-      p.bbox = {inf, inf, inf, -inf, -inf, -inf};
-      for (double s : {0.0, 1.0})
-        for (double t : {t0_, t1_})
-          for (int k = 0; k < 3; ++k) {
-            const double x = p.a[k] + s * p.e[k] + t * p.w[k];
-            p.bbox[k] = std::min(p.bbox[k], x);
-            p.bbox[k + 3] = std::max(p.bbox[k + 3], x);
-          }
-      panels_.push_back(p);
-    }
+  open_ends_ = !tr.ends_against.empty();
+  const auto pcs = tr.piece_list();
+  {
+    const double dip = pcs.front().dip_deg * kPi / 180;
+    normal_ = {-dx * std::sin(dip), -dy * std::sin(dip), -std::cos(dip)};
+  }
+  double above = tr.top;
+  for (std::size_t j = 0; j < pcs.size(); ++j) {
+    const double cot = cot_deg(pcs[j].dip_deg);
+    const double below = pcs[j].bottom;
+    // The piece's plane at elevation trace_z: the offset at its top minus its own run up to trace_z.
+    const double off = tr.offset_at(above) - (tr.trace_z - above) * cot;
+    const Point3 w{dx * cot, dy * cot, -1.0};
+    for (const auto& part : tr.parts)
+      for (std::size_t i = 0; i + 1 < part.size(); ++i) {
+        Panel p;
+        p.a = {part[i][0] + off * dx, part[i][1] + off * dy, tr.trace_z};
+        p.e = {part[i + 1][0] - part[i][0], part[i + 1][1] - part[i][1], 0.0};
+        p.w = w;
+        const Point3 c = cross(p.e, p.w);
+        p.area_scale = std::sqrt(dot(c, c));
+        p.n = {c[0] / p.area_scale, c[1] / p.area_scale, c[2] / p.area_scale};
+        p.ee = dot(p.e, p.e);
+        p.ew = dot(p.e, p.w);
+        p.ww = dot(p.w, p.w);
+        p.det = p.ee * p.ww - p.ew * p.ew;
+        p.length = std::sqrt(p.ee);
+        p.first = i == 0;
+        p.last = i + 2 == part.size();
+        p.t0 = tr.trace_z - above;
+        p.t1 = tr.trace_z - below;
+        p.piece = j;
+        constexpr double inf = std::numeric_limits<double>::infinity();
+        p.bbox = {inf, inf, inf, -inf, -inf, -inf};
+        for (double s : {0.0, 1.0})
+          for (double t : {p.t0, p.t1})
+            for (int k = 0; k < 3; ++k) {
+              const double x = p.a[k] + s * p.e[k] + t * p.w[k];
+              p.bbox[k] = std::min(p.bbox[k], x);
+              p.bbox[k + 3] = std::max(p.bbox[k + 3], x);
+            }
+        panels_.push_back(p);
+      }
+    above = below;
+  }
 }
 
 FaultSurface::Local FaultSurface::local(std::size_t i, const Point3& x) const {
@@ -195,7 +267,12 @@ double FaultSurface::distance(const Point3& x, bool within_depth) const {
   for (std::size_t i = 0; i < panels_.size(); ++i) {
     const Local l = local(i, x);
     const Panel& p = panels_[i];
-    const double s = std::clamp(l.s, 0.0, 1.0), t = within_depth ? std::clamp(l.t, t0_, t1_) : l.t;
+    // A listric panel extends up and down only at the top and bottom of the fault.
+    const double lo = within_depth || p.piece > 0 ? p.t0 : -std::numeric_limits<double>::infinity();
+    const double hi = within_depth || p.t1 < t1_ ? p.t1 : std::numeric_limits<double>::infinity();
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    const double s = std::clamp(l.s, p.first && open_ends_ ? -inf : 0.0, p.last && open_ends_ ? inf : 1.0);
+    const double t = std::clamp(l.t, lo, hi);
     Point3 q;
     for (int k = 0; k < 3; ++k) q[k] = p.a[k] + s * p.e[k] + t * p.w[k] - x[k];
     best = std::min(best, std::sqrt(dot(q, q)));

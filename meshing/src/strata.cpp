@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -128,7 +129,7 @@ Strata read_strata(const std::string& path) {
   if (root.has("faults")) s.faults_file = resolve_relative(path, root.string("faults"));
   std::set<std::string> fault_names;
   for (const auto& t : root.tables("fault")) {
-    t.reject_unknown({"name", "top_m", "bottom_m"});
+    t.reject_unknown({"name", "top_m", "bottom_m", "dip_deg", "dip_dir_deg", "trace_z_m", "ends_against", "segment"});
     FaultRange f;
     f.where = t.where();
     f.name = t.string("name");
@@ -137,6 +138,25 @@ Strata read_strata(const std::string& path) {
     f.top = t.number("top_m");
     f.bottom = t.number("bottom_m");
     if (!(f.top >= f.bottom)) throw t.error("bottom_m", fmt::format("fault '{}': bottom_m lies above top_m", f.name));
+    if (t.has("dip_deg")) {
+      f.dip_deg = t.number("dip_deg");
+      if (!(*f.dip_deg > 0 && *f.dip_deg <= 90))
+        throw t.error("dip_deg", fmt::format("fault '{}': dip_deg {} is outside (0, 90]", f.name, *f.dip_deg));
+    }
+    if (t.has("dip_dir_deg")) f.dip_dir_deg = t.number("dip_dir_deg");
+    if (t.has("trace_z_m")) f.trace_z = t.number("trace_z_m");
+    if (t.has("ends_against")) f.ends_against = t.string("ends_against");
+    for (const auto& sg : t.tables("segment")) {
+      sg.reject_unknown({"bottom_m", "dip_deg"});
+      FaultTrace::Piece pc;
+      pc.bottom = sg.number("bottom_m");
+      pc.dip_deg = sg.number("dip_deg");
+      if (!(pc.dip_deg > 0 && pc.dip_deg <= 90))
+        throw sg.error("dip_deg", fmt::format("fault '{}': dip_deg {} is outside (0, 90]", f.name, pc.dip_deg));
+      f.segments.push_back(pc);
+    }
+    if (f.has_dip() && !t.has("dip_dir_deg"))
+      throw t.error("dip_dir_deg", fmt::format("fault '{}': a dipping fault needs dip_dir_deg", f.name));
     s.faults.push_back(std::move(f));
   }
   return s;
@@ -365,32 +385,153 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
       pm.warnings.push_back(fmt::format("{}: material rule '{}' matches no plan triangle", strata.materials[r].where,
                                         strata.materials[r].name));
 
-  // Faults: the plan's fault:<name> line groups with their depth range.
+  // Faults. The faults file and [[fault]] tables give depth ranges and, with a dip, dipping faults
+  // built by cutting the layered mesh (docs/dipping-faults.md); plan fault lines of the others are
+  // vertical faults over their range.
   const bool have_ranges = !strata.faults_file.empty() || !strata.faults.empty();
   std::optional<geo::VectorData> fault_features;
+  if (!strata.faults_file.empty()) {
+    try {
+      fault_features = geo::read_vector(strata.faults_file, model_wkt);
+    } catch (const InputError& e) {
+      throw InputError(strata.file, fmt::format("faults: {}", e.what()));
+    }
+  }
+  auto table_of = [&](const std::string& name) -> const FaultRange* {
+    for (const auto& r : strata.faults)
+      if (r.name == name) return &r;
+    return nullptr;
+  };
+  // Dipping (cut) faults, in file order then [[fault]] order.
+  std::set<std::string> cut_names;
+  auto add_cut = [&](FaultTrace tr, const FaultRange* r) {
+    if (r) {
+      tr.top = r->top;
+      tr.bottom = r->bottom;
+      if (r->dip_deg) tr.dip_deg = *r->dip_deg;
+      if (r->dip_dir_deg) tr.dip_dir_deg = *r->dip_dir_deg;
+      if (r->trace_z) tr.trace_z = *r->trace_z;
+      if (!r->segments.empty()) tr.pieces = r->segments;
+      else if (r->dip_deg) tr.pieces.clear();
+      if (!r->ends_against.empty()) tr.ends_against = r->ends_against;
+      tr.where = r->where;
+    }
+    check_fault_trace(tr);
+    cut_names.insert(tr.name);
+    pm.cut_faults.push_back(std::move(tr));
+  };
+  if (fault_features)
+    for (const auto& feat : fault_features->features) {
+      const FaultRange* r = table_of(feat.text_of("name").value_or(""));
+      if (!feature_has_dip(feat) && !(r && r->has_dip())) continue;
+      const std::string where = fmt::format("{}: feature {}", strata.faults_file, feat.fid);
+      FaultTrace tr;
+      if (feature_has_dip(feat)) {
+        tr = fault_trace_from_feature(feat, where);
+      } else {
+        tr.where = where;
+        tr.name = feat.text_of("name").value_or("");
+        for (const auto& l : feat.lines) tr.parts.emplace_back(l.begin(), l.end());
+        tr.trace_z = r->top;
+      }
+      const bool line = plan.find_line_group("fault:" + tr.name) != nullptr;
+      if (tr.vertical() && line && !(r && r->has_dip()) && tr.pieces.empty()) continue;  // vertical from the plan line
+      add_cut(std::move(tr), r);
+    }
+  for (const auto& r : strata.faults) {
+    if (!r.has_dip() || cut_names.count(r.name)) continue;
+    // The trace from the plan's line group: chain its edges.
+    const PlanLineGroup* g = plan.find_line_group("fault:" + r.name);
+    if (!g)
+      throw InputError(r.where, fmt::format("fault '{}' has a dip but no trace: neither the faults file nor the plan {} "
+                                            "has a line for it",
+                                            r.name, plan.source));
+    FaultTrace tr;
+    tr.name = r.name;
+    tr.where = r.where;
+    tr.trace_z = r.top;
+    std::map<std::uint32_t, std::uint32_t> next;
+    std::set<std::uint32_t> heads;
+    for (const auto& [a, b] : g->edges) {
+      next[a] = b;
+      heads.insert(a);
+    }
+    for (const auto& [a, b] : g->edges) heads.erase(b);
+    for (auto h : heads) {
+      std::vector<std::array<double, 2>> part{plan.xy[h]};
+      for (auto it = next.find(h); it != next.end() && part.size() <= g->edges.size(); it = next.find(it->second))
+        part.push_back(plan.xy[it->second]);
+      tr.parts.push_back(std::move(part));
+    }
+    if (tr.parts.empty())
+      throw InputError(r.where, fmt::format("fault '{}': the plan's line is closed; give its trace in the faults file", r.name));
+    add_cut(std::move(tr), &r);
+  }
+  // Checks of the cut faults: trace inside the plan, depth range inside the model.
+  if (!pm.cut_faults.empty()) {
+    double ztop = -std::numeric_limits<double>::infinity(), zbot = std::numeric_limits<double>::infinity();
+    for (double z : pm.input.surfaces.front()) ztop = std::max(ztop, z);
+    for (double z : pm.input.surfaces.back()) zbot = std::min(zbot, z);
+    double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, ymin = xmin, ymax = -xmin;
+    for (const auto& p : plan.xy) {
+      xmin = std::min(xmin, p[0]);
+      xmax = std::max(xmax, p[0]);
+      ymin = std::min(ymin, p[1]);
+      ymax = std::max(ymax, p[1]);
+    }
+    const double scale = std::max(xmax - xmin, ymax - ymin);
+    auto in_plan = [&](const std::array<double, 2>& x) {
+      const double eps = 1e-9 * scale;
+      for (const auto& t : plan.triangles) {
+        const auto &a = plan.xy[t[0]], &b = plan.xy[t[1]], &c = plan.xy[t[2]];
+        auto o = [](const XY& p, const XY& q, const XY& r) {
+          return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+        };
+        const double l = std::max(std::hypot(b[0] - a[0], b[1] - a[1]), std::hypot(c[0] - a[0], c[1] - a[1]));
+        if (o(a, b, x) >= -eps * l && o(b, c, x) >= -eps * l && o(c, a, x) >= -eps * l) return true;
+      }
+      return false;
+    };
+    for (const auto& tr : pm.cut_faults) {
+      const std::string who = fmt::format("fault '{}'", tr.name);
+      if (tr.bottom < zbot - 1e-6 * scale || tr.top > ztop + 1e-6 * scale || tr.bottom > ztop || tr.top < zbot)
+        throw InputError(tr.where, fmt::format("{}: its depth range {:.1f} .. {:.1f} m lies outside the model ({:.1f} .. "
+                                               "{:.1f} m)",
+                                               who, tr.top, tr.bottom, ztop, zbot));
+      for (const auto& part : tr.parts)
+        for (std::size_t i = 0; i + 1 < part.size(); ++i)
+          for (int k = 0; k <= 8; ++k) {
+            const double f = k / 8.0;
+            const XY x{part[i][0] + f * (part[i + 1][0] - part[i][0]), part[i][1] + f * (part[i + 1][1] - part[i][1])};
+            if (!in_plan(x))
+              throw InputError(tr.where, fmt::format("{}: the trace leaves the plan at ({:.2f}, {:.2f})", who, x[0], x[1]));
+          }
+      pm.notes.push_back(fmt::format("{}: dipping ({} piece(s), dip {:.1f} deg toward {:.1f}, {:.1f} .. {:.1f} m{}), cut "
+                                     "into the layered mesh",
+                                     who, tr.piece_list().size(), tr.dip_deg, tr.dip_dir_deg, tr.top, tr.bottom,
+                                     tr.ends_against.empty() ? "" : ", ends against '" + tr.ends_against + "'"));
+    }
+  }
+
   for (const auto& g : plan.lines) {
     if (g.name.rfind("fault:", 0) != 0) continue;
     VerticalFault f;
     f.name = g.name.substr(6);
     f.edges = g.edges;
+    if (cut_names.count(f.name)) {
+      pm.notes.push_back(fmt::format("fault '{}': the plan line is its trace only (the fault dips)", f.name));
+      continue;
+    }
     if (!have_ranges) {
       pm.notes.push_back(fmt::format("fault '{}' spans the whole model height (no depth ranges in {})", f.name, strata.file));
     } else {
       bool found = false;
-      for (const auto& r : strata.faults)
-        if (r.name == f.name) {
-          f.top = r.top;
-          f.bottom = r.bottom;
-          found = true;
-        }
-      if (!found && !strata.faults_file.empty()) {
-        if (!fault_features) {
-          try {
-            fault_features = geo::read_vector(strata.faults_file, model_wkt);
-          } catch (const InputError& e) {
-            throw InputError(strata.file, fmt::format("faults: {}", e.what()));
-          }
-        }
+      if (const FaultRange* r = table_of(f.name)) {
+        f.top = r->top;
+        f.bottom = r->bottom;
+        found = true;
+      }
+      if (!found && fault_features) {
         for (const auto& feat : fault_features->features) {
           if (feat.text_of("name") != f.name) continue;
           const auto top = feat.number_of("top_m"), bottom = feat.number_of("bottom_m");
@@ -414,7 +555,7 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
     pm.input.faults.push_back(std::move(f));
   }
   for (const auto& r : strata.faults)
-    if (!plan.find_line_group("fault:" + r.name))
+    if (!plan.find_line_group("fault:" + r.name) && !cut_names.count(r.name))
       pm.warnings.push_back(fmt::format("{}: fault '{}' is not a line group of the plan {}", r.where, r.name, plan.source));
   pm.input.plan = &plan;
   return pm;

@@ -5,6 +5,8 @@
 // GEOS (OGR Contains) on the triangle centroids, volumes as area x mean thickness.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include <cmath>
 #include <map>
 
@@ -80,8 +82,18 @@ TEST(SampleTwin, CoarseMeshMatchesIndependentCountsAndVolumes) {
                 (dir / "faults.geojson").string() + " --hmax 1000 -q -o " + plan_file.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = test::run(test::tool("ugs-meshgen") + " " + plan_file.string() + " --strata " + (dir / "strata-faults.toml").string() +
-                " -o " + model_file.string());
+                " -v -o " + model_file.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The sample's faults dip: ugs-meshgen cuts them into the layered mesh (docs/dipping-faults.md)
+  // and says how many tetrahedra the layered mesh had and how many nodes the cut added.
+  const std::smatch cut = [&] {
+    std::smatch m;
+    static const std::regex re(R"(dipping faults cut in [0-9.]+ s: ([0-9]+) -> ([0-9]+) tetrahedra, ([0-9]+) new nodes)");
+    std::regex_search(r.err, m, re);
+    return m;
+  }();
+  ASSERT_EQ(cut.size(), 4u) << r.err;
+  const std::size_t layered_tets = std::stoul(cut[1]), cut_tets = std::stoul(cut[2]), cut_nodes = std::stoul(cut[3]);
   const Mesh mesh = read_msh(model_file.string());
   const Mesh plan = read_msh(plan_file.string());
 
@@ -178,8 +190,9 @@ TEST(SampleTwin, CoarseMeshMatchesIndependentCountsAndVolumes) {
     }
   }
 
-  EXPECT_EQ(mesh.num_nodes(), nodes);
-  EXPECT_EQ(mesh.count(ElementType::Tetrahedron), tets);
+  EXPECT_EQ(mesh.num_nodes(), nodes + cut_nodes);
+  EXPECT_EQ(layered_tets, tets);
+  EXPECT_EQ(mesh.count(ElementType::Tetrahedron), cut_tets);
   const auto c = test::check_conformity(mesh);
   EXPECT_EQ(c.over_shared, 0u);
   EXPECT_EQ(c.untagged_outer, 0u);

@@ -2,8 +2,10 @@
 // node columns above the plan nodes with one node per surface and sub-layer boundary (merged where
 // a unit pinches out), each triangular prism split into three tetrahedra by the global node order
 // (conforming), materials mat:<name> by unit and polygon, boundary triangles bnd:top|bottom|west|
-// east|south|north, and vertical fault:<name> triangles above the plan's fault lines over their
-// depth range. A quality report goes to stderr, the mesh (binary MSH 4.1) to stdout.
+// east|south|north, vertical fault:<name> triangles above the plan's fault lines over their depth
+// range, and dipping or listric faults of the faults file (dip_deg < 90) as fault:<name> faces of a
+// conforming cut of the mesh by their planes (docs/dipping-faults.md). A quality report goes to
+// stderr, the mesh (binary MSH 4.1) to stdout.
 //
 //   ugs-mesh2d --domain domain.geojson --refine refinement.geojson --fault faults.geojson |
 //     ugs-meshgen --strata strata.toml > model.msh   (one line)
@@ -13,6 +15,7 @@
 
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
+#include "ugs/meshing/fault_cut.hpp"
 #include "ugs/meshing/layered_mesh.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
 #include "ugs/meshing/plan.hpp"
@@ -23,6 +26,7 @@ namespace {
 struct Options {
   std::string plan = "-";
   std::string strata;
+  std::string faults;
   double small_angle = 5.0;
   bool ascii = false;
 };
@@ -54,6 +58,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--strata", opt.strata, "Stratigraphy file (TOML): surfaces, units, materials (docs/meshing.md)")
       ->required();
+  app.add_option("--faults", opt.faults,
+                 "Faults file (OGR) replacing the strata file's `faults`: depth ranges, and dips for dipping faults "
+                 "(docs/dipping-faults.md)");
   app.add_option("--small-angle", opt.small_angle, "Report tetrahedra with a dihedral angle below this (degrees)")
       ->capture_default_str();
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH (default: binary)");
@@ -66,7 +73,8 @@ int main(int argc, char** argv) {
 
     if (opt.plan == "-" && ::isatty(STDIN_FILENO))
       throw ugs::InputError("stdin", "no plan: give a plan file or pipe one in (ugs-mesh2d ... | ugs-meshgen ...)");
-    const ugs::Strata strata = ugs::read_strata(opt.strata);
+    ugs::Strata strata = ugs::read_strata(opt.strata);
+    if (!opt.faults.empty()) strata.faults_file = opt.faults;
     const ugs::Mesh plan_mesh = ugs::read_msh(opt.plan);
     const ugs::Plan plan = ugs::plan_from_mesh(plan_mesh, opt.plan == "-" ? std::string("stdin") : opt.plan);
     double t = clock.lap(), total = t;
@@ -88,6 +96,25 @@ int main(int argc, char** argv) {
     total += t;
     ugs::cli::detail("mesh built in {:.3f} s: {} levels per column, {} nodes merged at pinch-outs, {} tetrahedra dropped",
                      t, stats.levels, stats.merged_nodes, stats.dropped_tetrahedra);
+
+    if (!model.cut_faults.empty()) {
+      // Dipping faults: conforming cut of the layered mesh by their panels (docs/dipping-faults.md).
+      const ugs::FaultCutSummary cut = ugs::cut_faults(mesh, model.cut_faults);
+      t = clock.lap();
+      total += t;
+      ugs::cli::detail("dipping faults cut in {:.3f} s: {} -> {} tetrahedra, {} new nodes, {} nodes snapped onto a fault, {} edges bisected "
+                       "against tearing (on-plane tolerance {:.2g} m)",
+                       t, cut.tetrahedra_before, cut.tetrahedra_after, cut.nodes_after - cut.nodes_before, cut.snapped,
+                       cut.untorn, cut.tolerance);
+      for (const auto& f : cut.faults) {
+        ugs::cli::info("fault:{:<20} dipping, {} panel(s): {} triangles, {:.4g} km2, z {:.1f} .. {:.1f} m, off-plane "
+                       "{:.1e} m, normal {:.1e} deg",
+                       f.name, f.panels, f.triangles, f.area * 1e-6, f.zmax, f.zmin, f.max_distance, f.max_angle_deg);
+        if (f.boundary_faces > 0)
+          ugs::cli::warning("fault '{}': {} faces of its surface lie on the model boundary and are not part of it",
+                            f.name, f.boundary_faces);
+      }
+    }
 
     const ugs::QualityReport q = ugs::mesh_quality(mesh, opt.small_angle);
     t = clock.lap();

@@ -3,6 +3,10 @@
 // the trace translated down-dip: at elevation z the trace moves by (trace_z - z) / tan(dip) along the
 // dip direction (azimuth, degrees clockwise from north), from top down to bottom. Each segment of
 // the trace sweeps a planar panel; the panels form the surface.
+//
+// Listric faults (docs/dipping-faults.md): a list of pieces down-dip, each with its own dip, from
+// top to its bottom; the trace moves down-dip by the integral of cot(dip) over depth, so each
+// (segment, piece) pair is a planar panel and successive pieces meet along horizontal lines.
 #pragma once
 #include <array>
 #include <string>
@@ -19,6 +23,22 @@ struct FaultTrace {
   double top = 0, bottom = 0;                        // elevations, m (negative below sea level)
   double dip_deg = 90, dip_dir_deg = 0;
   double trace_z = 0;                                // elevation of the trace line
+  // Listric: pieces top to bottom (bottom elevations strictly decreasing, the last == bottom); empty
+  // = one planar piece of dip_deg. When set, dip_deg is the dip of the first piece.
+  struct Piece {
+    double bottom = 0;
+    double dip_deg = 90;
+  };
+  std::vector<Piece> pieces;
+  std::string ends_against;                          // another fault this one ends against ("" = none)
+
+  bool planar() const { return pieces.size() <= 1; }
+  bool vertical() const;                             // every piece has dip 90
+  // Horizontal offset along the dip direction of the surface at elevation z from the trace (m; the
+  // pieces extended above top and below bottom by their first and last dip).
+  double offset_at(double z) const;
+  // The pieces, also for a planar fault (one piece).
+  std::vector<Piece> piece_list() const;
 };
 
 // Checks a trace and drops repeated consecutive points: InputError(where, "fault '<name>': ...")
@@ -28,8 +48,19 @@ void check_fault_trace(FaultTrace& trace);
 
 // Reads traces from any OGR vector file: (multi)line features with fields name, top_m, bottom_m,
 // dip_deg, dip_dir_deg and optionally trace_z_m (default top_m), reprojected to `model_wkt` when
-// both have a CRS. Every trace is checked; a name used twice is an error.
+// both have a CRS. Every trace is checked; a name used twice is an error. Optional fields:
+// listric_bottom_m and listric_dip_deg (lists of the same length, as JSON arrays or text "a, b, c":
+// the listric pieces; then dip_deg may be left out) and ends_against (name of another fault).
 std::vector<FaultTrace> read_fault_traces(const std::string& path, const std::string& model_wkt = "");
+
+namespace geo {
+struct Feature;
+}
+// One trace from one OGR feature (fields as above), checked. `where` names it in messages.
+FaultTrace fault_trace_from_feature(const geo::Feature& feature, const std::string& where);
+// Does the feature carry a dip (dip_deg or listric fields)? Features without one only give a depth
+// range to a plan fault line (a vertical fault of ugs-meshgen).
+bool feature_has_dip(const geo::Feature& feature);
 
 // The trace surface as planar panels.
 class FaultSurface {
@@ -42,6 +73,8 @@ public:
     double area_scale = 0;      // |e x w|: area per unit of s * t
     bool first = false, last = false;  // ends of their part: the surface ends there
     std::array<double, 6> bbox{};      // of the panel within the depth range
+    double t0 = 0, t1 = 0;             // depth range of the panel below the trace elevation (its piece)
+    std::size_t piece = 0;             // listric piece (0 for a planar fault)
   };
   struct Local {
     double s = 0, t = 0, h = 0; // along the segment, depth below the trace, signed distance from the plane
@@ -50,12 +83,15 @@ public:
   explicit FaultSurface(const FaultTrace& trace);
   const std::vector<Panel>& panels() const { return panels_; }
   Local local(std::size_t panel, const Point3& p) const;
-  // Depth range below the trace: t0 = trace_z - top, t1 = trace_z - bottom.
+  // Depth range below the trace: t0 = trace_z - top, t1 = trace_z - bottom (a panel covers its
+  // piece's part of it: Panel::t0, t1).
   double t0() const { return t0_; }
   double t1() const { return t1_; }
-  // Side 1 -> side 2 normal: down and against the dip direction (side 1 = hanging wall).
+  // Side 1 -> side 2 normal: down and against the dip direction (side 1 = hanging wall); of the
+  // first piece for a listric fault.
   const Point3& reference_normal() const { return normal_; }
-  // Distance from p to the surface (to the nearest panel, within its ends and, when
+  // Distance from p to the surface (to the nearest panel, within its ends (not at the ends of a
+  // fault that ends against another: ugs-meshgen extends it there) and, when
   // `within_depth`, between top and bottom; otherwise the panels extend up and down without end).
   double distance(const Point3& p, bool within_depth = true) const;
   std::array<double, 6> bbox() const;
@@ -64,6 +100,7 @@ private:
   std::vector<Panel> panels_;
   double t0_ = 0, t1_ = 0;
   Point3 normal_{};
+  bool open_ends_ = false;
 };
 
 }  // namespace ugs

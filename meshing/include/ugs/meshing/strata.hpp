@@ -3,9 +3,11 @@
 // natural-neighbour interpolation), units between them with their sub-layers, material rules
 // (unit + optional polygon -> material, first match wins) and the depth ranges of the plan's faults.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "ugs/meshing/fault_traces.hpp"
 #include "ugs/meshing/layered_mesh.hpp"
 #include "ugs/meshing/plan.hpp"
 #include "ugs/meshing/surface_stack.hpp"
@@ -38,6 +40,12 @@ struct MaterialRule {
 struct FaultRange {
   std::string name, where;
   double top = 0, bottom = 0;  // elevations (m), top >= bottom
+  // Optional: a dip makes the fault a dipping one (docs/dipping-faults.md); the trace comes from
+  // the faults file, else from the plan's line group fault:<name>.
+  std::optional<double> dip_deg, dip_dir_deg, trace_z;
+  std::vector<FaultTrace::Piece> segments;   // [[fault.segment]]: listric pieces, top to bottom
+  std::string ends_against;
+  bool has_dip() const { return dip_deg.has_value() || !segments.empty(); }
 };
 
 struct Strata {
@@ -63,6 +71,10 @@ struct PreparedModel {
   std::string crs;                      // label of the model CRS
   std::vector<std::string> notes;       // decisions worth telling the user (-v)
   std::vector<std::string> warnings;
+  // Faults built by cutting the layered mesh (cut_faults, fault_cut.hpp): every fault of the faults
+  // file or of [[fault]] with a dip below 90 degrees or listric pieces, and vertical ones without a
+  // plan line. Checked: trace inside the plan, depth range inside the model.
+  std::vector<FaultTrace> cut_faults;
 };
 
 // Samples every surface at the plan columns, applies the order rule and pinch-outs, assigns a

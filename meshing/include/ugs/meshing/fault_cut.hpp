@@ -1,0 +1,83 @@
+// Dipping faults made of tetrahedron faces (docs/dipping-faults.md): a conforming cut of a
+// tetrahedral mesh by the planar panels of fault surfaces (fault_traces.hpp: a trace, a dip, a dip
+// direction and a depth range, or listric pieces down-dip).
+//
+// Each panel is a convex polygon Q = plane P ∩ half-spaces (depth limits, the vertical planes
+// through the trace's vertices along the dip, and for a fault that ends against another the other
+// fault's plane). The cut, per panel:
+//   1. every edge crossing P of every tetrahedron whose section by P meets Q is bisected at P;
+//   2. for each bounding half-space, every edge lying in P that crosses its plane near Q is
+//      bisected there, so that the edges of Q are mesh edges.
+// An edge is bisected in every element holding it (tetrahedra and triangle groups alike), and an
+// element with several marked edges bisects them in increasing order of their node pair, so two
+// elements sharing a face split it the same way: the mesh stays conforming, every child keeps its
+// parent's orientation and material, and its volume is a positive fraction of the parent's.
+// New nodes lie on P up to rounding, so the faces lying in P with their centroid inside Q cover
+// Q ∩ model exactly. They become the triangle group fault:<name>, normals down and against the dip
+// direction (side 1 = hanging wall, as ugs-faultinsert orients them). Last, a tetrahedron with all
+// four nodes on one fault (where it bends, or a sliver between two of its faces; ugs-faultinsert
+// would have to tear it apart) has its longest edge off the fault bisected at its midpoint.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "ugs/formats/mesh.hpp"
+#include "ugs/meshing/fault_traces.hpp"
+
+namespace ugs {
+
+struct CutHalfSpace {
+  Point3 m{};      // inside: m . x <= d
+  double d = 0;
+};
+
+struct CutPanel {
+  Point3 n{};      // unit normal of the plane n . x = c, pointing down and against the dip direction
+  double c = 0;
+  std::vector<CutHalfSpace> bounds;
+  std::size_t piece = 0, segment = 0;
+};
+
+// The panels of a trace. A fault with `ends_against` is extended past the other fault (found in
+// `all` by name) along its last segment at that end and bounded by the other fault's plane.
+// InputError (naming the fault) when the other fault is missing or the two run parallel.
+std::vector<CutPanel> fault_cut_panels(const FaultTrace& trace, const std::vector<FaultTrace>& all);
+
+// Is x inside panel p (its plane within `tol`, and every bound)?
+bool panel_contains(const CutPanel& p, const Point3& x, double tol);
+
+struct FaultCutOptions {
+  double tolerance = 0;   // m: a node this close to a plane lies on it; 0 = 1e-9 of the model's diagonal
+  // Before each panel's cut, a node closer to its plane than snap * its shortest edge is moved onto
+  // it (not nodes on triangles, material interfaces or earlier panels, and only when its tetrahedra
+  // keep at least half their smallest dihedral angle): fewer slivers. 0 = never.
+  double snap = 0.2;
+};
+
+struct FaultCutReport {
+  std::string name;
+  std::size_t panels = 0;
+  std::size_t triangles = 0;      // faces in fault:<name>
+  double area = 0;                // m2
+  double max_distance = 0;        // m: of the faces' nodes from their panel's plane
+  double max_angle_deg = 0;       // between the faces' normals and their panel's normal
+  double zmin = 0, zmax = 0;      // extent of the faces
+  std::size_t boundary_faces = 0; // faces in a panel lying on the model's boundary (not kept)
+};
+
+struct FaultCutSummary {
+  std::vector<FaultCutReport> faults;
+  std::size_t nodes_before = 0, nodes_after = 0;
+  std::size_t tetrahedra_before = 0, tetrahedra_after = 0;
+  std::size_t untorn = 0;
+  std::size_t snapped = 0;        // nodes moved onto a panel's plane         // edges bisected so that no tetrahedron has four nodes on one fault
+  double tolerance = 0;
+};
+
+// Cuts the mesh's tetrahedra and triangles (other element types are kept as they are and must not
+// use a cut edge) and adds a triangle group fault:<name> per trace. Element tags are renumbered
+// 1.. in block order, new nodes get tags above the largest. InputError naming the fault when the
+// group already exists, or its surface does not cross the mesh.
+FaultCutSummary cut_faults(Mesh& mesh, const std::vector<FaultTrace>& traces, const FaultCutOptions& options = {});
+
+}  // namespace ugs

@@ -1,0 +1,727 @@
+// Conforming cut of a tetrahedral mesh by fault panels (fault_cut.hpp, docs/dipping-faults.md).
+#include "ugs/meshing/fault_cut.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/error.hpp"
+#include "ugs/meshing/mesh_quality.hpp"
+
+namespace ugs {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Point3 scaled(const Point3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
+Point3 unit(const Point3& a) { return scaled(a, 1.0 / norm(a)); }
+
+double cot_deg(double dip_deg) {
+  if (dip_deg >= 90) return 0.0;
+  const double d = dip_deg * kPi / 180;
+  return std::cos(d) / std::sin(d);
+}
+
+using P2 = std::array<double, 2>;
+
+// Panels of a trace without `ends_against` handling.
+std::vector<CutPanel> plain_panels(const FaultTrace& tr) {
+  const double az = tr.dip_dir_deg * kPi / 180;
+  const double dx = std::sin(az), dy = std::cos(az);
+  std::vector<CutPanel> out;
+  const auto pcs = tr.piece_list();
+  double above = tr.top;
+  for (std::size_t j = 0; j < pcs.size(); ++j) {
+    const double below = pcs[j].bottom, cot = cot_deg(pcs[j].dip_deg);
+    const double off = tr.offset_at(above);  // offset of the piece's top line from the trace
+    const Point3 w{dx * cot, dy * cot, -1.0};
+    const Point3 wu = unit(w);
+    const double dip = pcs[j].dip_deg * kPi / 180;
+    const Point3 ref{-dx * std::sin(dip), -dy * std::sin(dip), -std::cos(dip)};
+    std::size_t seg = 0;
+    for (const auto& part : tr.parts) {
+      const std::size_t nv = part.size();
+      // Horizontal direction of the lateral bound at each vertex: the bisector of the segments.
+      std::vector<Point3> h(nv);
+      for (std::size_t v = 0; v < nv; ++v) {
+        Point3 s{0, 0, 0};
+        if (v > 0) {
+          const Point3 e{part[v][0] - part[v - 1][0], part[v][1] - part[v - 1][1], 0};
+          s = unit(e);
+        }
+        if (v + 1 < nv) {
+          const Point3 e = unit(Point3{part[v + 1][0] - part[v][0], part[v + 1][1] - part[v][1], 0});
+          s = {s[0] + e[0], s[1] + e[1], 0};
+        }
+        const Point3 m = sub(s, scaled(wu, dot(s, wu)));  // perpendicular to the down-dip direction
+        h[v] = unit(m);
+      }
+      for (std::size_t i = 0; i + 1 < nv; ++i, ++seg) {
+        const Point3 A{part[i][0] + off * dx, part[i][1] + off * dy, above};
+        const Point3 B{part[i + 1][0] + off * dx, part[i + 1][1] + off * dy, above};
+        CutPanel p;
+        p.piece = j;
+        p.segment = seg;
+        Point3 n = unit(cross(sub(B, A), w));
+        if (dot(n, ref) < 0 || (dot(n, ref) == 0 && n[1] + n[0] * 1e-9 > 0)) n = scaled(n, -1);
+        p.n = n;
+        p.c = dot(n, A);
+        p.bounds.push_back({{0, 0, 1}, above});
+        p.bounds.push_back({{0, 0, -1}, -below});
+        p.bounds.push_back({scaled(h[i], -1), -dot(h[i], A)});
+        p.bounds.push_back({h[i + 1], dot(h[i + 1], B)});
+        out.push_back(std::move(p));
+      }
+    }
+    above = below;
+  }
+  return out;
+}
+
+// Distance from x to panel p (its polygon, approximately: the plane distance plus how far the
+// projection lies outside the bounds).
+double panel_distance(const CutPanel& p, const Point3& x) {
+  const double h = dot(p.n, x) - p.c;
+  double out = 0;
+  for (const auto& b : p.bounds) out = std::max(out, dot(b.m, x) - b.d);
+  return std::hypot(h, out);
+}
+
+}  // namespace
+
+bool panel_contains(const CutPanel& p, const Point3& x, double tol) {
+  if (std::abs(dot(p.n, x) - p.c) > tol) return false;
+  for (const auto& b : p.bounds)
+    if (dot(b.m, x) > b.d + tol) return false;
+  return true;
+}
+
+std::vector<CutPanel> fault_cut_panels(const FaultTrace& tr, const std::vector<FaultTrace>& all) {
+  if (tr.ends_against.empty()) return plain_panels(tr);
+  const std::string who = fmt::format("fault '{}'", tr.name);
+  const FaultTrace* other = nullptr;
+  for (const auto& f : all)
+    if (f.name == tr.ends_against) other = &f;
+  if (!other) throw InputError(tr.where, fmt::format("{}: ends_against names fault '{}', which is not given", who, tr.ends_against));
+  if (other->name == tr.name) throw InputError(tr.where, fmt::format("{}: a fault cannot end against itself", who));
+  const auto target = plain_panels(*other);
+  const double zmid = 0.5 * (tr.top + tr.bottom);
+  // The trace end nearest the other fault (at mid-depth) and the panel of the other fault there.
+  std::size_t best_part = 0;
+  bool at_last = true;
+  std::size_t best_panel = 0;
+  double best = std::numeric_limits<double>::infinity();
+  const double az = tr.dip_dir_deg * kPi / 180;
+  const double dx = std::sin(az), dy = std::cos(az);
+  const double off_mid = tr.offset_at(zmid);
+  for (std::size_t q = 0; q < tr.parts.size(); ++q)
+    for (bool last : {false, true}) {
+      const P2& e = last ? tr.parts[q].back() : tr.parts[q].front();
+      const Point3 x{e[0] + off_mid * dx, e[1] + off_mid * dy, zmid};
+      for (std::size_t k = 0; k < target.size(); ++k)
+        if (const double d = panel_distance(target[k], x); d < best) {
+          best = d;
+          best_part = q;
+          at_last = last;
+          best_panel = k;
+        }
+    }
+  const CutPanel& A = target[best_panel];
+  FaultTrace ext = tr;
+  auto& part = ext.parts[best_part];
+  const P2 end = at_last ? part.back() : part.front();
+  const P2 prev = at_last ? part[part.size() - 2] : part[1];
+  const P2 dir2{end[0] - prev[0], end[1] - prev[1]};
+  const double len = std::hypot(dir2[0], dir2[1]);
+  const Point3 u{dir2[0] / len, dir2[1] / len, 0};
+  const double un = dot(A.n, u);
+  if (std::abs(un) < 1e-3)
+    throw InputError(tr.where, fmt::format("{}: runs parallel to fault '{}' and cannot end against it", who, other->name));
+  // How far the end must move along u for the fault to reach the other one at every depth.
+  double reach = 0;
+  for (double z : {tr.top, tr.bottom, zmid}) {
+    const double off = tr.offset_at(z);
+    const Point3 x{end[0] + off * dx, end[1] + off * dy, z};
+    reach = std::max(reach, (A.c - dot(A.n, x)) / un);
+  }
+  // A point of the trace away from that end says which side of the other fault it keeps.
+  const P2 keep = at_last ? part.front() : part.back();
+  const double off_top = tr.offset_at(zmid);
+  const Point3 xk{keep[0] + off_top * dx, keep[1] + off_top * dy, zmid};
+  double side = dot(A.n, xk) - A.c;
+  if (side == 0) side = -reach;  // the other end lies on it: keep the side away from the extension
+  if (reach > 0) {
+    const double grow = 1.1 * reach + 0.01 * len + 1.0;
+    const P2 moved{end[0] + grow * u[0], end[1] + grow * u[1]};
+    (at_last ? part.back() : part.front()) = moved;
+  }
+  auto panels = plain_panels(ext);
+  const double s = side > 0 ? 1.0 : -1.0;  // inside: s * (n . x - c) >= 0
+  for (auto& p : panels) p.bounds.push_back({scaled(A.n, -s), -s * A.c});
+  return panels;
+}
+
+namespace {
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+using EdgeMap = std::unordered_map<std::uint64_t, std::uint32_t>;
+
+// Bisects the marked edges of an element in increasing order of their keys (module comment).
+template <std::size_t K>
+void split_element(const std::array<std::uint32_t, K>& e, const EdgeMap& marked, std::vector<std::array<std::uint32_t, K>>& out) {
+  std::uint64_t best = std::numeric_limits<std::uint64_t>::max();
+  int ia = -1, ib = -1;
+  for (std::size_t i = 0; i < K; ++i)
+    for (std::size_t j = i + 1; j < K; ++j) {
+      const auto k = edge_key(e[i], e[j]);
+      if (k < best && marked.count(k)) {
+        best = k;
+        ia = static_cast<int>(i);
+        ib = static_cast<int>(j);
+      }
+    }
+  if (ia < 0) {
+    out.push_back(e);
+    return;
+  }
+  const std::uint32_t m = marked.at(best);
+  auto c1 = e, c2 = e;
+  c1[ia] = m;
+  c2[ib] = m;
+  split_element(c1, marked, out);
+  split_element(c2, marked, out);
+}
+
+class Cutter {
+public:
+  Cutter(Mesh& mesh, double tol) : mesh_(mesh), X_(mesh.nodes), tol_(tol) {
+    for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
+      const auto& blk = mesh.blocks[b];
+      if (blk.type == ElementType::Tetrahedron)
+        for (std::size_t i = 0; i < blk.size(); ++i) {
+          const auto e = blk.element(i);
+          T_.push_back({e[0], e[1], e[2], e[3]});
+          Tb_.push_back(static_cast<std::uint32_t>(b));
+        }
+      else if (blk.type == ElementType::Triangle)
+        for (std::size_t i = 0; i < blk.size(); ++i) {
+          const auto e = blk.element(i);
+          F_.push_back({e[0], e[1], e[2]});
+          Fb_.push_back(static_cast<std::uint32_t>(b));
+        }
+    }
+  }
+
+  std::size_t tetrahedra() const { return T_.size(); }
+  std::size_t snapped() const { return snapped_; }
+
+  // Nodes that must not move: on a triangle (boundary, other faults), on a material interface.
+  void init_fixed() {
+    fixed_.assign(X_.size(), 0);
+    for (const auto& f : F_)
+      for (auto v : f) fixed_[v] = 1;
+    std::vector<std::uint32_t> block_of(X_.size(), std::numeric_limits<std::uint32_t>::max());
+    for (std::size_t i = 0; i < T_.size(); ++i)
+      for (auto v : T_[i]) {
+        if (block_of[v] == std::numeric_limits<std::uint32_t>::max()) block_of[v] = Tb_[i];
+        else if (block_of[v] != Tb_[i]) fixed_[v] = 1;
+      }
+  }
+
+  // Before cutting by p: a free node closer to p than `ratio` times its shortest edge is moved onto
+  // p (along p's normal) when its tetrahedra stay positive and their smallest dihedral angle does
+  // not fall below half of what it was: the cut would otherwise leave slivers of that thickness.
+  void snap(const CutPanel& p, double ratio) {
+    if (ratio <= 0) return;
+    const std::size_t n = X_.size();
+    fixed_.resize(n, 1);
+    std::vector<double> g(n);
+    for (std::size_t i = 0; i < n; ++i) g[i] = dot(p.n, X_[i]) - p.c;
+    // Candidates: free nodes off the plane near it, inside the panel's bounds widened by 1 km.
+    std::vector<std::uint32_t> cand_index(n, std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::uint32_t> cands;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (fixed_[i] || std::abs(g[i]) <= tol_) continue;
+      bool near = true;
+      for (const auto& b : p.bounds)
+        if (dot(b.m, X_[i]) > b.d + 1000.0) near = false;
+      if (!near) continue;
+      cand_index[i] = static_cast<std::uint32_t>(cands.size());
+      cands.push_back(static_cast<std::uint32_t>(i));
+    }
+    if (cands.empty()) return;
+    std::vector<std::vector<std::uint32_t>> tets_of(cands.size());
+    std::vector<double> hmin(cands.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t t = 0; t < T_.size(); ++t)
+      for (int k = 0; k < 4; ++k) {
+        const auto c = cand_index[T_[t][k]];
+        if (c == std::numeric_limits<std::uint32_t>::max()) continue;
+        tets_of[c].push_back(static_cast<std::uint32_t>(t));
+        for (int j = 0; j < 4; ++j)
+          if (j != k) hmin[c] = std::min(hmin[c], norm(sub(X_[T_[t][j]], X_[T_[t][k]])));
+      }
+    auto worst = [&](const std::vector<std::uint32_t>& tets, double& min_vol) {
+      double a = 180;
+      min_vol = std::numeric_limits<double>::infinity();
+      for (auto t : tets) {
+        const auto& e = T_[t];
+        min_vol = std::min(min_vol, tet_signed_volume(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
+        a = std::min(a, min_dihedral_angle_deg(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
+      }
+      return a;
+    };
+    for (std::size_t c = 0; c < cands.size(); ++c) {
+      const auto v = cands[c];
+      const double gv = dot(p.n, X_[v]) - p.c;
+      if (std::abs(gv) >= ratio * hmin[c] || std::abs(gv) <= tol_) continue;
+      // Only a node with a neighbour across the plane would make a cut near it.
+      double vol0;
+      const double a0 = worst(tets_of[c], vol0);
+      const Point3 old = X_[v];
+      X_[v] = {old[0] - gv * p.n[0], old[1] - gv * p.n[1], old[2] - gv * p.n[2]};
+      double vol1;
+      const double a1 = worst(tets_of[c], vol1);
+      if (vol1 > 0 && a1 >= 0.5 * a0) {
+        ++snapped_;
+      } else {
+        X_[v] = old;
+      }
+    }
+  }
+
+  // After a panel: its nodes are fixed for the next panels.
+  void fix_plane(const CutPanel& p) {
+    fixed_.resize(X_.size(), 1);
+    for (std::size_t i = 0; i < X_.size(); ++i)
+      if (std::abs(dot(p.n, X_[i]) - p.c) <= tol_) fixed_[i] = 1;
+  }
+
+  // Step 1 for one panel.
+  void cut_plane(const CutPanel& p) {
+    std::vector<double> g(X_.size());
+    for (std::size_t i = 0; i < X_.size(); ++i) g[i] = dot(p.n, X_[i]) - p.c;
+    EdgeMap marked;
+    std::vector<Point3> section;
+    for (const auto& t : T_) {
+      double lo = g[t[0]], hi = lo;
+      for (int k = 1; k < 4; ++k) {
+        lo = std::min(lo, g[t[k]]);
+        hi = std::max(hi, g[t[k]]);
+      }
+      if (!(lo < -tol_ && hi > tol_)) continue;
+      section.clear();
+      for (int k = 0; k < 4; ++k)
+        if (std::abs(g[t[k]]) <= tol_) section.push_back(X_[t[k]]);
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+          if (crosses(g[t[i]], g[t[j]])) section.push_back(crossing(t[i], t[j], g[t[i]], g[t[j]]));
+      if (separated(section, p.bounds, nullptr)) continue;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+          if (crosses(g[t[i]], g[t[j]])) mark(marked, t[i], t[j], g);
+    }
+    apply(marked);
+  }
+
+  // Step 2 for one bound of one panel.
+  void cut_bound(const CutPanel& p, std::size_t bi) {
+    const CutHalfSpace& B = p.bounds[bi];
+    const std::size_t n = X_.size();
+    std::vector<char> on(n);
+    std::vector<double> h(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
+      h[i] = dot(B.m, X_[i]) - B.d;
+    }
+    struct Cand {
+      std::uint32_t a, b;
+      Point3 x;
+      double len;
+    };
+    std::vector<Cand> cands;
+    std::unordered_set<std::uint64_t> seen;
+    for (const auto& t : T_) {
+      int count = on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]];
+      if (count < 2) continue;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const auto a = t[i], b = t[j];
+          if (!on[a] || !on[b] || !crosses(h[a], h[b])) continue;
+          if (!seen.insert(edge_key(a, b)).second) continue;
+          cands.push_back({std::min(a, b), std::max(a, b), crossing(a, b, h[a], h[b]), norm(sub(X_[a], X_[b]))});
+        }
+    }
+    // Edges whose crossing lies along Q's edge, widened by twice the longest such edge: every face
+    // of P meeting Q's edge has both its crossing edges cut.
+    auto outside_by = [&](const Point3& x) {
+      double o = 0;
+      for (std::size_t k = 0; k < p.bounds.size(); ++k)
+        if (k != bi) o = std::max(o, dot(p.bounds[k].m, x) - p.bounds[k].d);
+      return o;
+    };
+    double margin = 0;
+    for (const auto& c : cands)
+      if (outside_by(c.x) <= 2 * c.len) margin = std::max(margin, 2 * c.len);
+    EdgeMap marked;
+    std::vector<double> hh = h;
+    for (const auto& c : cands)
+      if (outside_by(c.x) <= margin + tol_) mark(marked, c.a, c.b, hh);
+    apply(marked);
+  }
+
+  // Faces lying in panel p with their centroid inside it, sorted node triples -> oriented face.
+  void collect(const CutPanel& p, std::map<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>>& faces,
+               std::map<std::array<std::uint32_t, 3>, int>& uses) const {
+    const std::size_t n = X_.size();
+    std::vector<char> on(n);
+    for (std::size_t i = 0; i < n; ++i) on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
+    static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    for (const auto& t : T_) {
+      if (on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]] < 3) continue;
+      for (const auto& f : face_of) {
+        std::array<std::uint32_t, 3> tri{t[f[0]], t[f[1]], t[f[2]]};
+        if (!on[tri[0]] || !on[tri[1]] || !on[tri[2]]) continue;
+        Point3 cen{0, 0, 0};
+        for (auto v : tri)
+          for (int k = 0; k < 3; ++k) cen[k] += X_[v][k] / 3;
+        bool inside = true;
+        for (const auto& b : p.bounds)
+          if (dot(b.m, cen) > b.d) inside = false;
+        if (!inside) continue;
+        auto key = tri;
+        std::sort(key.begin(), key.end());
+        ++uses[key];
+        const Point3 nrm = cross(sub(X_[tri[1]], X_[tri[0]]), sub(X_[tri[2]], X_[tri[0]]));
+        if (dot(nrm, p.n) < 0) std::swap(tri[1], tri[2]);
+        faces.emplace(key, tri);
+      }
+    }
+  }
+
+  const std::vector<Point3>& nodes() const { return X_; }
+
+  // Adds the faces of fault f (oriented) as elements of a virtual block after the mesh's blocks,
+  // so that later bisections split them too.
+  void add_fault_faces(std::size_t f, const std::vector<std::array<std::uint32_t, 3>>& faces) {
+    for (const auto& t : faces) {
+      F_.push_back(t);
+      Fb_.push_back(static_cast<std::uint32_t>(mesh_.blocks.size() + f));
+    }
+  }
+
+  // A tetrahedron with its four nodes on one fault would be torn apart by ugs-faultinsert (it
+  // happens where a fault bends, or in slivers between two of its faces): its longest edge that is
+  // not an edge of the fault is bisected at its midpoint, until there is none. Returns how many.
+  std::size_t untear(std::size_t nfaults) {
+    const std::uint32_t nb = static_cast<std::uint32_t>(mesh_.blocks.size());
+    std::size_t total = 0;
+    for (int iter = 0; iter < 20; ++iter) {
+      std::vector<std::vector<char>> on(nfaults, std::vector<char>(X_.size(), 0));
+      std::vector<std::unordered_set<std::uint64_t>> edges(nfaults);
+      for (std::size_t i = 0; i < F_.size(); ++i) {
+        if (Fb_[i] < nb) continue;
+        const auto f = Fb_[i] - nb;
+        const auto& t = F_[i];
+        for (int k = 0; k < 3; ++k) {
+          on[f][t[k]] = 1;
+          edges[f].insert(edge_key(t[k], t[(k + 1) % 3]));
+        }
+      }
+      EdgeMap marked;
+      for (const auto& t : T_)
+        for (std::size_t f = 0; f < nfaults; ++f) {
+          if (!(on[f][t[0]] && on[f][t[1]] && on[f][t[2]] && on[f][t[3]])) continue;
+          double best = -1;
+          std::uint32_t ba = 0, bb = 0;
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) {
+              if (edges[f].count(edge_key(t[i], t[j]))) continue;
+              const double l = norm(sub(X_[t[i]], X_[t[j]]));
+              if (l > best) {
+                best = l;
+                ba = t[i];
+                bb = t[j];
+              }
+            }
+          if (best < 0) continue;  // every edge on the fault: left to ugs-faultinsert to report
+          const auto k = edge_key(ba, bb);
+          if (marked.count(k)) continue;
+          const Point3& A = X_[std::min(ba, bb)];
+          const Point3& B = X_[std::max(ba, bb)];
+          marked.emplace(k, static_cast<std::uint32_t>(X_.size()));
+          X_.push_back({0.5 * (A[0] + B[0]), 0.5 * (A[1] + B[1]), 0.5 * (A[2] + B[2])});
+        }
+      if (marked.empty()) break;
+      total += marked.size();
+      apply(marked);
+    }
+    return total;
+  }
+
+  // Writes the elements back into the mesh's blocks, plus the fault groups (the virtual blocks);
+  // renumbers element tags.
+  void finish(const std::vector<std::string>& names, std::size_t nodes_before) {
+    std::uint64_t next_tag = mesh_.max_node_tag();
+    for (std::size_t i = nodes_before; i < X_.size(); ++i) mesh_.node_tags.push_back(++next_tag);
+    const std::size_t nb = mesh_.blocks.size();
+    for (auto& b : mesh_.blocks) {
+      if (b.type == ElementType::Tetrahedron || b.type == ElementType::Triangle) {
+        b.nodes.clear();
+        b.tags.clear();
+      }
+    }
+    int ptag = 0, etag2 = 0;
+    for (const auto& p : mesh_.physicals) ptag = std::max(ptag, p.tag);
+    for (const auto& e : mesh_.entities)
+      if (e.dim == 2) etag2 = std::max(etag2, e.tag);
+    for (const auto& name : names) {
+      mesh_.physicals.push_back({2, ++ptag, "fault:" + name});
+      mesh_.entities.push_back({2, ++etag2, {ptag}, {}});
+      ElementBlock b;
+      b.entity_dim = 2;
+      b.entity_tag = etag2;
+      b.type = ElementType::Triangle;
+      mesh_.blocks.push_back(std::move(b));
+    }
+    for (std::size_t i = 0; i < T_.size(); ++i) {
+      auto& b = mesh_.blocks[Tb_[i]];
+      b.nodes.insert(b.nodes.end(), T_[i].begin(), T_[i].end());
+    }
+    for (std::size_t i = 0; i < F_.size(); ++i) {
+      auto& b = mesh_.blocks[Fb_[i]];
+      b.nodes.insert(b.nodes.end(), F_[i].begin(), F_[i].end());
+    }
+    (void)nb;
+    std::uint64_t tag = 0;
+    for (auto& b : mesh_.blocks) {
+      b.tags.resize(b.nodes.size() / b.npe());
+      for (auto& t : b.tags) t = ++tag;
+    }
+    mesh_.blocks.erase(std::remove_if(mesh_.blocks.begin(), mesh_.blocks.end(), [](const ElementBlock& b) { return b.tags.empty(); }),
+                       mesh_.blocks.end());
+    mesh_.update_entity_bboxes();
+  }
+
+  // The fault faces after every bisection, for the report.
+  std::vector<std::array<std::uint32_t, 3>> fault_faces(std::size_t f) const {
+    std::vector<std::array<std::uint32_t, 3>> out;
+    const std::size_t id = mesh_.blocks.size() + f;
+    for (std::size_t i = 0; i < F_.size(); ++i)
+      if (Fb_[i] == id) out.push_back(F_[i]);
+    return out;
+  }
+
+private:
+  bool crosses(double ga, double gb) const { return (ga < -tol_ && gb > tol_) || (ga > tol_ && gb < -tol_); }
+
+  // Crossing point of edge (a, b), computed from the lower index so both directions agree.
+  Point3 crossing(std::uint32_t a, std::uint32_t b, double ga, double gb) const {
+    if (a > b) {
+      std::swap(a, b);
+      std::swap(ga, gb);
+    }
+    const double s = ga / (ga - gb);
+    const Point3& A = X_[a];
+    const Point3& B = X_[b];
+    return {A[0] + s * (B[0] - A[0]), A[1] + s * (B[1] - A[1]), A[2] + s * (B[2] - A[2])};
+  }
+
+  void mark(EdgeMap& marked, std::uint32_t a, std::uint32_t b, std::vector<double>& g) {
+    const auto k = edge_key(a, b);
+    if (marked.count(k)) return;
+    const Point3 x = crossing(a, b, g[a], g[b]);
+    marked.emplace(k, static_cast<std::uint32_t>(X_.size()));
+    X_.push_back(x);
+    g.push_back(0.0);
+  }
+
+  // Is the convex point set outside one of the bounds?
+  bool separated(const std::vector<Point3>& pts, const std::vector<CutHalfSpace>& bounds, const std::size_t* skip) const {
+    for (std::size_t k = 0; k < bounds.size(); ++k) {
+      if (skip && *skip == k) continue;
+      bool all_out = true;
+      for (const auto& x : pts)
+        if (dot(bounds[k].m, x) <= bounds[k].d + tol_) {
+          all_out = false;
+          break;
+        }
+      if (all_out) return true;
+    }
+    return false;
+  }
+
+  void apply(const EdgeMap& marked) {
+    if (marked.empty()) return;
+    std::vector<char> flag(X_.size(), 0);
+    for (const auto& [k, m] : marked) {
+      flag[k >> 32] = 1;
+      flag[k & 0xffffffffu] = 1;
+    }
+    std::vector<std::array<std::uint32_t, 4>> tets;
+    const std::size_t nt = T_.size();
+    for (std::size_t i = 0; i < nt; ++i) {
+      const auto t = T_[i];
+      if (flag[t[0]] + flag[t[1]] + flag[t[2]] + flag[t[3]] < 2) continue;
+      tets.clear();
+      split_element<4>(t, marked, tets);
+      T_[i] = tets[0];
+      for (std::size_t c = 1; c < tets.size(); ++c) {
+        T_.push_back(tets[c]);
+        Tb_.push_back(Tb_[i]);
+      }
+    }
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    const std::size_t nf = F_.size();
+    for (std::size_t i = 0; i < nf; ++i) {
+      const auto f = F_[i];
+      if (flag[f[0]] + flag[f[1]] + flag[f[2]] < 2) continue;
+      tris.clear();
+      split_element<3>(f, marked, tris);
+      F_[i] = tris[0];
+      for (std::size_t c = 1; c < tris.size(); ++c) {
+        F_.push_back(tris[c]);
+        Fb_.push_back(Fb_[i]);
+      }
+    }
+    for (const auto& b : mesh_.blocks) {
+      if (b.type == ElementType::Tetrahedron || b.type == ElementType::Triangle) continue;
+      for (std::size_t i = 0; i < b.size(); ++i) {
+        const auto e = b.element(i);
+        for (std::size_t x = 0; x < e.size(); ++x)
+          for (std::size_t y = x + 1; y < e.size(); ++y)
+            if (e[x] < flag.size() && e[y] < flag.size() && flag[e[x]] && flag[e[y]] && marked.count(edge_key(e[x], e[y])))
+              throw InputError("mesh", fmt::format("a {} element uses an edge that a fault cuts; only tetrahedra and "
+                                                   "triangles can be cut",
+                                                   element_name(b.type)));
+      }
+    }
+  }
+
+  Mesh& mesh_;
+  std::vector<Point3>& X_;
+  double tol_;
+  std::vector<std::array<std::uint32_t, 4>> T_;
+  std::vector<std::uint32_t> Tb_;
+  std::vector<std::array<std::uint32_t, 3>> F_;
+  std::vector<std::uint32_t> Fb_;
+  std::vector<char> fixed_;
+  std::size_t snapped_ = 0;
+};
+
+}  // namespace
+
+FaultCutSummary cut_faults(Mesh& mesh, const std::vector<FaultTrace>& traces, const FaultCutOptions& options) {
+  FaultCutSummary sum;
+  sum.nodes_before = mesh.nodes.size();
+  std::array<double, 6> box{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (const auto& x : mesh.nodes)
+    for (int k = 0; k < 3; ++k) {
+      box[k] = std::min(box[k], x[k]);
+      box[k + 3] = std::max(box[k + 3], x[k]);
+    }
+  const double diag = mesh.nodes.empty() ? 1.0 : std::hypot(box[3] - box[0], box[4] - box[1], box[5] - box[2]);
+  const double tol = options.tolerance > 0 ? options.tolerance : 1e-9 * diag;
+  sum.tolerance = tol;
+
+  std::vector<std::vector<CutPanel>> panels;
+  for (const auto& tr : traces) {
+    if (mesh.find_physical(2, "fault:" + tr.name))
+      throw InputError(tr.where, fmt::format("fault '{}': the mesh already has a group fault:{}", tr.name, tr.name));
+    panels.push_back(fault_cut_panels(tr, traces));
+  }
+  Cutter cut(mesh, tol);
+  sum.tetrahedra_before = cut.tetrahedra();
+  cut.init_fixed();
+  for (const auto& fp : panels)
+    for (const auto& p : fp) {
+      cut.snap(p, options.snap);
+      cut.cut_plane(p);
+      for (std::size_t b = 0; b < p.bounds.size(); ++b) cut.cut_bound(p, b);
+      cut.fix_plane(p);
+    }
+  sum.snapped = cut.snapped();
+
+  std::vector<std::string> names;
+  for (std::size_t f = 0; f < traces.size(); ++f) {
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    std::set<std::array<std::uint32_t, 3>> taken;
+    std::size_t on_boundary = 0;
+    for (const auto& p : panels[f]) {
+      std::map<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>> faces;
+      std::map<std::array<std::uint32_t, 3>, int> uses;
+      cut.collect(p, faces, uses);
+      for (const auto& [key, tri] : faces) {
+        if (uses[key] < 2) {
+          ++on_boundary;
+          continue;
+        }
+        if (taken.insert(key).second) tris.push_back(tri);
+      }
+    }
+    if (tris.empty())
+      throw InputError(traces[f].where,
+                       fmt::format("fault '{}': its surface does not cross the mesh (check the trace, top_m, bottom_m, "
+                                   "dip_deg and dip_dir_deg)",
+                                   traces[f].name));
+    cut.add_fault_faces(f, tris);
+    names.push_back(traces[f].name);
+    FaultCutReport r;
+    r.name = traces[f].name;
+    r.panels = panels[f].size();
+    r.boundary_faces = on_boundary;
+    sum.faults.push_back(r);
+  }
+  sum.untorn = cut.untear(traces.size());
+  // Report: distance and normal of every face against the panel it lies in.
+  const auto& X = cut.nodes();
+  for (std::size_t f = 0; f < traces.size(); ++f) {
+    FaultCutReport& r = sum.faults[f];
+    r.zmin = std::numeric_limits<double>::infinity();
+    r.zmax = -r.zmin;
+    const auto tris = cut.fault_faces(f);
+    r.triangles = tris.size();
+    for (const auto& tri : tris) {
+      const Point3 nrm = cross(sub(X[tri[1]], X[tri[0]]), sub(X[tri[2]], X[tri[0]]));
+      const double a = norm(nrm);
+      r.area += 0.5 * a;
+      double best_d = std::numeric_limits<double>::infinity(), best_ang = 0;
+      for (const auto& p : panels[f]) {
+        double d = 0;
+        for (auto v : tri) d = std::max(d, std::abs(dot(p.n, X[v]) - p.c));
+        if (d < best_d) {
+          best_d = d;
+          best_ang = std::acos(std::clamp(dot(nrm, p.n) / a, -1.0, 1.0)) * 180 / kPi;
+        }
+      }
+      r.max_distance = std::max(r.max_distance, best_d);
+      r.max_angle_deg = std::max(r.max_angle_deg, best_ang);
+      for (auto v : tri) {
+        r.zmin = std::min(r.zmin, X[v][2]);
+        r.zmax = std::max(r.zmax, X[v][2]);
+      }
+    }
+  }
+  sum.tetrahedra_after = cut.tetrahedra();
+  cut.finish(names, sum.nodes_before);
+  sum.nodes_after = mesh.nodes.size();
+  return sum;
+}
+
+}  // namespace ugs
