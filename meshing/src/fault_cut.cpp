@@ -637,7 +637,8 @@ FaultCutSummary cut_faults(Mesh& mesh, const std::vector<FaultTrace>& traces, co
       box[k + 3] = std::max(box[k + 3], x[k]);
     }
   const double diag = mesh.nodes.empty() ? 1.0 : std::hypot(box[3] - box[0], box[4] - box[1], box[5] - box[2]);
-  const double tol = options.tolerance > 0 ? options.tolerance : 1e-9 * diag;
+  // Not rounding level (fault_cut.hpp): a node a hair off a plane would get all its edges cut that close.
+  const double tol = options.tolerance > 0 ? options.tolerance : 1e-7 * diag;
   sum.tolerance = tol;
 
   std::vector<std::vector<CutPanel>> panels;

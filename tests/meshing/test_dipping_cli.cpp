@@ -154,4 +154,55 @@ TEST(DippingFaultsCli, BadInputExitsTwoNamingTheFault) {
              "leaves the plan");
 }
 
+// Regression: the sample's faults cut into its layered mesh (pinch-outs, two nearly collinear
+// segments of the back-thrust whose panels meet at an angle of 1e-6 rad). With an on-plane
+// tolerance at rounding level, nodes of one panel lying 1e-4 m off the next one had every edge
+// split 1e-4 m from them: tetrahedra with coincident nodes that ugs-flow rejects as degenerate.
+TEST(DippingFaultsCli, SampleCutHasNoDegenerateTetrahedra) {
+  const fs::path src = fs::path(UGS_SOURCE_DIR) / "data-samples/po-plain";
+  ASSERT_TRUE(fs::exists(src / "strata.toml")) << src;
+  const fs::path dir = temp_dir("dipping-sample");
+  const fs::path plan = dir / "plan.msh", model = dir / "model.msh";
+  auto r = run("cd " + src.string() + " && " + tool("ugs-mesh2d") +
+               " --domain domain.geojson --refine refinement.geojson --size-field none --refine-size 600 --trace "
+               "reservoir_traces.geojson --fault faults.geojson --section sections.geojson --hmax 5000 --grading 0.3 -q -o " +
+               plan.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run("cd " + src.string() + " && " + tool("ugs-meshgen") + " " + plan.string() + " --strata strata.toml -q -o " +
+          model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh m = read_msh(model.string());
+  std::size_t coincident = 0, degenerate = 0, fault_faces = 0;
+  for (const auto& b : m.blocks) {
+    if (b.type == ElementType::Triangle && m.physical_name_of(b.entity_dim, b.entity_tag).rfind("fault:", 0) == 0)
+      fault_faces += b.size();
+    if (b.type != ElementType::Tetrahedron) continue;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const auto e = b.element(i);
+      bool same = false;
+      for (int a = 0; a < 4; ++a)
+        for (int c = a + 1; c < 4; ++c) {
+          const Point3 &p = m.nodes[e[a]], &q = m.nodes[e[c]];
+          same = same || std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) < 1e-6;
+        }
+      coincident += same;
+      // ugs-flow's test (solver/flow/src/flow_model.cpp): volume against the cube of the Jacobian's size.
+      const Point3 &x0 = m.nodes[e[0]], &x1 = m.nodes[e[1]], &x2 = m.nodes[e[2]], &x3 = m.nodes[e[3]];
+      const double scale = std::abs(x1[0] - x0[0]) + std::abs(x2[1] - x0[1]) + std::abs(x3[2] - x0[2]) +
+                           std::abs(x2[0] - x0[0]) + std::abs(x3[1] - x0[1]) + std::abs(x1[2] - x0[2]);
+      degenerate += !(tet_signed_volume(x0, x1, x2, x3) > 1e-14 * scale * scale * scale);
+    }
+  }
+  EXPECT_EQ(coincident, 0u);
+  EXPECT_EQ(degenerate, 0u);
+  EXPECT_GT(fault_faces, 20000u);
+  const Conformity k = check_conformity(m);
+  EXPECT_EQ(k.over_shared, 0u);
+  EXPECT_EQ(k.untagged_outer, 0u);
+  EXPECT_EQ(k.tagged_not_outer, 0u);
+  EXPECT_EQ(k.fault_not_face, 0u);
+  EXPECT_EQ(k.nonpositive, 0u);
+  EXPECT_EQ(k.repeated_nodes, 0u);
+}
+
 }  // namespace

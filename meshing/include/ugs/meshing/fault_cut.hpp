@@ -47,7 +47,11 @@ std::vector<CutPanel> fault_cut_panels(const FaultTrace& trace, const std::vecto
 bool panel_contains(const CutPanel& p, const Point3& x, double tol);
 
 struct FaultCutOptions {
-  double tolerance = 0;   // m: a node this close to a plane lies on it; 0 = 1e-9 of the model's diagonal
+  // m: a node this close to a plane lies on it; 0 = 1e-7 of the model's diagonal (5 mm at 50 km).
+  // Not rounding level: one panel's cut spills into its neighbour's region with nodes off the
+  // neighbour's plane by angle x distance (1e-4 m for nearly collinear trace segments), and a cut
+  // next to such a node splits all its edges that close to it: coincident nodes, zero volumes.
+  double tolerance = 0;
   // Before each panel's cut, a node closer to its plane than snap * its shortest edge is moved onto
   // it (not nodes on triangles, material interfaces or earlier panels, and only when its tetrahedra
   // keep at least half their smallest dihedral angle): fewer slivers. 0 = never.
