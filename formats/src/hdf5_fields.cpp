@@ -17,6 +17,7 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/io.hpp"
+#include "xml_escape.hpp"
 
 namespace ugs {
 namespace {
@@ -70,19 +71,7 @@ const char* xdmf_attribute_type(int components) {
   }
 }
 
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
+using detail::xml_escape;
 
 std::string xdmf_path_for(const std::string& h5) {
   for (std::string_view ext : {".h5", ".hdf5"})

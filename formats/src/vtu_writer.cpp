@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/vtu.hpp"
+#include "xml_escape.hpp"
 
 namespace ugs {
 namespace {
@@ -31,19 +32,7 @@ std::uint8_t vtk_cell_type(ElementType t) {
   return 0;
 }
 
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
+using detail::xml_escape;
 
 // One compressed array of the appended section.
 std::string compress_array(const void* data, std::size_t bytes) {

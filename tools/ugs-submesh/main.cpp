@@ -13,6 +13,7 @@
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/geodata.hpp"
 #include "ugs/meshing/submesh.hpp"
+#include <fmt/ranges.h>
 
 namespace {
 
@@ -27,14 +28,7 @@ struct Options {
   bool ascii = false;
 };
 
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) {
-    if (!s.empty()) s += ", ";
-    s += x;
-  }
-  return s;
-}
+std::string join(const std::vector<std::string>& v) { return fmt::format("{}", fmt::join(v, ", ")); }
 
 }  // namespace
 

@@ -10,20 +10,14 @@
 
 #include "ugs/formats/error.hpp"
 #include "ugs/solver/compressibility.hpp"
+#include <fmt/ranges.h>
 
 namespace ugs::flow {
 namespace {
 
 constexpr double kMPa = 1e6;
 
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) {
-    if (!s.empty()) s += ", ";
-    s += x;
-  }
-  return s;
-}
+std::string join(const std::vector<std::string>& v) { return fmt::format("{}", fmt::join(v, ", ")); }
 
 // Material name (without "mat:") of a tetrahedron block's entity, or "" if it has none.
 std::string material_of(const Mesh& mesh, const ElementBlock& b) {
