@@ -116,7 +116,8 @@ const MaterialSpec* CaseFile::material(const std::string& name) const {
 
 CaseFile read_case_file(const std::string& path) {
   const TomlTable root = TomlTable::parse_file(path);
-  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "fault", "solver", "output"});
+  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "fault", "solver", "output",
+                       "scenario"});
   CaseFile c;
   c.path = path;
   c.crs = root.string_opt("crs").value_or("");
@@ -168,10 +169,10 @@ CaseFile read_case_file(const std::string& path) {
   for (const auto& t : root.tables("fault")) c.faults.push_back(parse_fault(t));
   if (auto s = root.table_opt("solver")) {
     s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
-                       "reuse_preconditioner"});
+                       "reuse_preconditioner", "fault_solver"});
     c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8));
     c.max_newton_iterations = static_cast<int>(s->integer_opt("max_newton_iterations").value_or(25));
-    c.linear_solver = s->string_opt("linear_solver").value_or("cg-gamg");
+    c.linear_solver = s->string_opt("linear_solver").value_or("cg-hypre");
     if (!std::set<std::string>{"cg-gamg", "cg-hypre", "mumps", "cholmod"}.count(c.linear_solver))
       throw s->error("linear_solver", "must be one of cg-gamg, cg-hypre, mumps, cholmod");
     c.inversion_rule = s->string_opt("inversion_rule").value_or("sigma-max");
@@ -181,6 +182,20 @@ CaseFile read_case_file(const std::string& path) {
     c.max_substeps = static_cast<int>(s->integer_opt("max_substeps").value_or(64));
     if (c.max_substeps < 1 || c.max_substeps > 4096) throw s->error("max_substeps", "must lie in [1, 4096]");
     c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true);
+    c.fault_solver = s->string_opt("fault_solver").value_or("auto");
+    if (!std::set<std::string>{"auto", "mumps", "fieldsplit"}.count(c.fault_solver))
+      throw s->error("fault_solver", "must be one of auto, mumps, fieldsplit");
+  }
+  if (auto sc = root.table_opt("scenario")) {
+    sc->reject_unknown({"pressure_scale", "reference_date", "max_scale", "scale_tolerance"});
+    c.scenario_scale = sc->number_or("pressure_scale", 1.0);
+    if (!(c.scenario_scale >= 0) || !std::isfinite(c.scenario_scale)) throw sc->error("pressure_scale", "must not be negative");
+    c.scenario_reference_date = sc->string_opt("reference_date").value_or("");
+    if (!c.scenario_reference_date.empty() && !parse_iso_date(c.scenario_reference_date))
+      throw sc->error("reference_date", fmt::format("'{}' is not an ISO 8601 date", c.scenario_reference_date));
+    c.scenario_max_scale = positive(*sc, "max_scale", sc->number_or("max_scale", 10.0));
+    c.scenario_tolerance = positive(*sc, "scale_tolerance", sc->number_or("scale_tolerance", 0.01));
+    if (c.scenario_tolerance >= 1) throw sc->error("scale_tolerance", "must be below 1 (a relative width)");
   }
   if (auto o = root.table_opt("output")) {
     o->reject_unknown({"dates", "fields", "checkpoint_every"});

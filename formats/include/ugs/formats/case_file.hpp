@@ -76,7 +76,7 @@ struct CaseFile {
   // Solver settings (docs/case-file.md).
   double newton_tolerance = 1e-8;
   int max_newton_iterations = 25;
-  std::string linear_solver = "cg-gamg";        // cg-gamg | cg-hypre | mumps | cholmod
+  std::string linear_solver = "cg-hypre";       // cg-hypre | cg-gamg | mumps | cholmod (ugs-solve)
   std::string inversion_rule = "sigma-max";     // sigma-max | sigma-inversion | stress-dependent
   int max_substeps = 64;                        // a step that fails may be split into up to this many
   bool reuse_preconditioner = true;             // keep the AMG hierarchy while it converges well
@@ -85,6 +85,15 @@ struct CaseFile {
   // Fields written at output dates (ugs-solve); empty means all (docs/case-file.md).
   std::vector<std::string> output_fields;
   int checkpoint_every = 0;  // ugs-solve: also save the restart state every N steps (0: output dates only)
+  // Faulted runs of ugs-solve (docs/fault-mechanics.md).
+  std::string fault_solver = "auto";       // [solver] fault_solver: auto | mumps | fieldsplit
+  // [scenario]: the pressure change after reference_date is scaled about its value there,
+  // dp_s(t) = dp(t_ref) + scale (dp(t) - dp(t_ref)); ugs-solve --find-safe-scale searches the
+  // smallest scale at which a fault patch reaches chi = 1, up to max_scale, to scale_tolerance.
+  double scenario_scale = 1.0;
+  std::string scenario_reference_date;     // empty: the first date of the pressure history
+  double scenario_max_scale = 10.0;
+  double scenario_tolerance = 0.01;        // relative width of the final bracket
 
   const MaterialSpec* material(const std::string& name) const;
 };

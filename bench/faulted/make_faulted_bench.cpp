@@ -1,0 +1,191 @@
+// make_faulted_bench — the thesis-scale faulted ugs-solve case (chapter 4: 508,495 nodes, 26,598
+// interface elements) for bench/faulted/run.sh, when the real faulted model is not at hand:
+//   - the box of bench/faultinsert (84 x 84 x 68 cells of 100 m, Kuhn-split: 498,525 nodes,
+//     2,878,848 tetrahedra) with its six crossing faults (two regional faults dipping 45 degrees
+//     from -500 to -6,600 m, four buried local ones), inserted as interface elements: 26,496 of them
+//     and about 511,600 nodes;
+//   - a storage pool (hypo-plastic, c_R = 3) in the layer -1,500 to -1,400 m, an ellipse of
+//     2,000 x 1,400 m about the centre, inside a hypo-plastic aquifer ring to 3,000 m, in elastic rock
+//     with c_M from eq. 4.1; regional_west crosses the pool's edge;
+//   - one storage half-cycle: the pool's pressure change -6 MPa on 2015-05-01 (the production
+//     before it, reached in the first step) rising monthly to -1 MPa on 2015-11-01; the aquifer
+//     follows with exp(-d / 1 km) of the distance to the pool's edge;
+//   - the same case without faults (plain.msh, case_plain.toml) for the continuous peer run.
+// Writes DIR/faulted.msh, plain.msh, case.toml, case_plain.toml, flow.h5, flow_plain.h5.
+//
+//   make_faulted_bench DIR
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/fields.hpp"
+#include "ugs/formats/msh.hpp"
+#include "ugs/meshing/box_mesh.hpp"
+#include "ugs/meshing/fault_insert.hpp"
+#include "ugs/meshing/fault_select.hpp"
+#include "ugs/meshing/fault_traces.hpp"
+
+using namespace ugs;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Trace {
+  const char* name;
+  double x0, y0, x1, y1, top, bottom, dip, dip_dir;
+};
+
+// The faults of bench/faultinsert/make_bench_mesh.cpp.
+const Trace kTraces[] = {
+    {"regional_west", 7000, 0, 7000, 8400, -500, -6600, 45, 270},
+    {"regional_south", 0, 7000, 8400, 7000, -500, -6600, 45, 180},
+    {"local_1", 3000, 2000, 3000, 6000, -2000, -4000, 90, 90},
+    {"local_2", 3000, 1500, 7000, 1500, -1000, -3000, 90, 0},
+    {"local_3", 4000, 2000, 7000, 5000, -4000, -6000, 90, 135},
+    {"local_4", 1000, 3000, 5000, 7000, -3000, -5000, 90, 315},
+};
+
+constexpr double kCx = 4200, kCy = 4200, kRx = 2000, kRy = 1400, kAq = 3000, kTop = -1400, kBot = -1500;
+
+// Elliptic distance (m along x) from the pool's centre.
+double radius(const Point3& c) { return std::hypot(c[0] - kCx, (c[1] - kCy) * kRx / kRy); }
+
+std::string material(const Point3& c) {
+  if (c[2] > kTop || c[2] < kBot) return "rock";
+  const double r = radius(c);
+  return r < kRx ? "pool" : r < kAq ? "aquifer" : "rock";
+}
+
+Mesh submesh(const Mesh& m) {
+  Mesh s;
+  std::vector<std::int64_t> local(m.num_nodes(), -1);
+  for (const auto& b : m.blocks) {
+    if (b.type != ElementType::Tetrahedron) continue;
+    const std::string g = m.physical_name_of(b.entity_dim, b.entity_tag);
+    if (g != "mat:pool" && g != "mat:aquifer") continue;
+    const int e = s.entity_for_physical(3, g);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      std::uint32_t n[4];
+      const auto el = b.element(i);
+      for (int k = 0; k < 4; ++k) {
+        if (local[el[k]] < 0) local[el[k]] = s.add_node(m.nodes[el[k]], m.node_tags[el[k]]);
+        n[k] = static_cast<std::uint32_t>(local[el[k]]);
+      }
+      s.add_element(s.block(3, e, ElementType::Tetrahedron), n, b.tags[i]);
+    }
+  }
+  s.update_entity_bboxes();
+  return s;
+}
+
+void write_flow(const Mesh& m, const fs::path& path) {
+  const Mesh sub = submesh(m);
+  FieldSeriesWriter w(path.string(), sub);
+  for (int k = 0; k <= 6; ++k) {
+    const std::string date = fmt::format("2015-{:02d}-01", 5 + k);
+    const double pool = (-6.0 + 5.0 * k / 6.0) * 1e6;
+    Field f{"dp", 1, std::vector<double>(sub.num_nodes())};
+    for (std::size_t v = 0; v < sub.num_nodes(); ++v) f.values[v] = pool * std::exp(-std::max(0.0, radius(sub.nodes[v]) - kRx) / 1000.0);
+    const Field nodes[] = {f};
+    w.add_step(date, static_cast<double>(*parse_iso_date(date)), nodes);
+  }
+  w.commit();
+}
+
+std::string case_text(bool faults) {
+  std::string s = R"(# Thesis-scale faulted benchmark (bench/faulted): elastic rock with c_M from eq. 4.1, a hypo-plastic
+# pool and aquifer (Table 4.3), six faults (cohesion 0, friction 30 degrees), one storage half-cycle.
+[initial_stress]
+surface_elevation_m = 0
+lithostatic_gradient_MPa_per_m = 0.0226
+hydrostatic_gradient_MPa_per_m = 0.0100
+k0 = 0.9
+
+[[material]]
+name = "rock"
+law = "elastic"
+nu = 0.3
+
+[[material]]
+name = "pool"
+law = "hypoplastic"
+nu_z = 0.3
+Eh_over_Ez = 3.0
+nuh_over_nuz = 0.2
+c_R = 3
+
+[[material]]
+name = "aquifer"
+law = "hypoplastic"
+nu_z = 0.3
+Eh_over_Ez = 3.0
+nuh_over_nuz = 0.2
+c_R = 3
+
+[output]
+dates = ["2015-05-01", "2015-11-01"]
+fields = ["displacement", "stress_change"]
+)";
+  if (faults)
+    for (const auto& t : kTraces) s += fmt::format("\n[[fault]]\nname = \"{}\"\ncohesion_MPa = 0\nfriction_deg = 30\n", t.name);
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: make_faulted_bench DIR\n");
+    return 2;
+  }
+  const fs::path dir = argv[1];
+  fs::create_directories(dir);
+  try {
+    BoxMeshSpec s;
+    s.x = linspace(0, 8400, 84);
+    s.y = linspace(0, 8400, 84);
+    s.z = linspace(-6800, 0, 68);
+    s.material = [](const Point3& c) { return material(c); };
+    Mesh mesh = make_box_mesh(s);
+    mesh.provenance.push_back("make_faulted_bench (bench/faulted)");
+    write_msh(mesh, (dir / "plain.msh").string());
+    write_flow(mesh, dir / "flow_plain.h5");
+    std::ofstream(dir / "case_plain.toml") << case_text(false);
+
+    std::vector<FaultTrace> traces;
+    for (const auto& t : kTraces) {
+      FaultTrace ft;
+      ft.name = t.name;
+      ft.where = "bench";
+      ft.parts = {{{t.x0, t.y0}, {t.x1, t.y1}}};
+      ft.top = ft.trace_z = t.top;
+      ft.bottom = t.bottom;
+      ft.dip_deg = t.dip;
+      ft.dip_dir_deg = t.dip_dir;
+      check_fault_trace(ft);
+      traces.push_back(ft);
+    }
+    select_fault_faces(mesh, traces);
+    FaultInsertOptions fo;
+    fo.source = "make_faulted_bench";
+    const FaultInsertReport rep = insert_faults(mesh, fo);
+    std::size_t ie = 0;
+    for (const auto& f : rep.faults) ie += f.triangles;
+    write_msh(mesh, (dir / "faulted.msh").string());
+    write_flow(mesh, dir / "flow.h5");
+    std::ofstream(dir / "case.toml") << case_text(true);
+    std::printf("make_faulted_bench: %zu nodes, %zu tetrahedra, %zu interface elements in %zu faults (plain: %zu nodes)\n",
+                mesh.num_nodes(), mesh.count(ElementType::Tetrahedron), ie, rep.faults.size(),
+                mesh.num_nodes() - rep.new_nodes);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "make_faulted_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

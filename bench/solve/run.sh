@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# ugs-solve benchmarks (issue 8), run by bench/run-all or by hand:
+#
+#   bench/solve/run.sh [BUILD_DIR] [WORK_DIR]
+#     SCALE=0.25      plan node count scale of the thesis-scale box (default 1: ~500,000 nodes)
+#     SKIP_PEER=1     skip FEniCSx;  SKIP_HISTORY=1 skip the history;  HISTORY_STEPS=N steps to time
+#
+# 1. linear: one linear elastic solve of the thesis-scale model (~500,000 nodes, 1.5 million
+#    unknowns) to a relative residual of 1e-8 on 2 MPI processes, wall clock including reading the
+#    mesh and writing the displacement: ugs-solve against FEniCSx 0.5 (Debian python3-dolfinx-real,
+#    PETSc CG + GAMG with the rigid-body near-null space, fenicsx_linear.py), same mesh, physics and
+#    tolerance, in the same run. Target: ugs-solve at least 2x faster.
+# 2. history: the hypo-plastic 1950-2033 history (monthly, 1,008 steps) at the same scale on 2
+#    processes. Target: under 30 min, under 8 GB. HISTORY_STEPS=N times the first N steps after
+#    1964 (the storage cycles, what most of the history is) and projects the whole run.
+#
+# The model (tests/mechanics/mech_make_case thesis): the layered box of the thesis — 42 x 30 km,
+# bottom -10 km, the surfaces of Table 4.1 with their 41 sub-layers (2 m under Pool C), plan spacing
+# 50 m over the reservoirs growing to ~2 km — standing in for ugs-meshgen's output of the same size.
+# Linear case: elastic units, c_M of eq. 4.1 at the initial stress, Pool C depleted by 10 MPa.
+# History: the seven materials (hypo-plastic pools and aquifers, c_R 3 and 5), two pools' monthly
+# pressure-change fields (production to 1960, then storage cycles, aquifers lagging and decaying).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+build=$(cd "${1:-$root/build}" && pwd)
+work=${2:-/tmp/ugs-bench-solve}
+scale=${SCALE:-1}
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpirun="mpirun -n 2 --oversubscribe"
+cmake --build "$build" --target ugs-solve mech_make_case >/dev/null
+solve=$build/tools/ugs-solve/ugs-solve
+make_case=$build/tests/mechanics/mech_make_case
+
+echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg) (shared: compare lines of one run, not runs)"
+now() { date +%s.%N; }
+secs() { echo "$2 - $1" | bc; }
+
+# ---- 1. linear --------------------------------------------------------------------------------
+lin=$work/linear
+mkdir -p "$lin"
+if [[ ! -f $lin/mesh.msh || "$(cat "$lin/.scale" 2>/dev/null)" != "$scale" ]]; then
+  "$make_case" thesis "$lin" --linear --scale "$scale" 2>&1
+  echo "$scale" > "$lin/.scale"
+fi
+echo "== linear: ugs-solve, 2 processes"
+t0=$(now)
+/usr/bin/time -f "ugs-solve: max RSS %M kB (largest process)" $mpirun "$solve" "$lin/mesh.msh" --case "$lin/case.toml" \
+  --pressure "$lin/flow.h5" -o "$lin/ugs.h5" -v 2>&1 | grep -E "linear iterations,|time:|KSP|RSS" | sed 's/^ugs-solve: /ugs-solve: /'
+t_ugs=$(secs "$t0" "$(now)")
+echo "ugs-solve: wall $t_ugs s"
+/usr/bin/python3 -c "
+import h5py; h = h5py.File('$lin/ugs.h5'); s = sorted(h['steps'])[-1]; u = h['steps'][s]['node']['u'][:]
+print(f'ugs-solve: min u_z {u[:, 2].min() * 1e3:.4f} mm')"
+if [[ ${SKIP_PEER:-0} != 1 ]]; then
+  dpkg -l python3-dolfinx-real >/dev/null 2>&1 || { echo "FEniCSx (python3-dolfinx-real) is not installed"; exit 1; }
+  # FFCx compiles the forms on first use: warm its cache on a tiny model so the peer is not charged.
+  mkdir -p "$work/warm"
+  [[ -f $work/warm/mesh_arrays.h5 ]] || "$make_case" thesis "$work/warm" --linear --scale 0.01 >/dev/null 2>&1
+  /usr/bin/python3 "$here/fenicsx_linear.py" "$work/warm" >/dev/null 2>&1 || true
+  echo "== linear: FEniCSx 0.5, 2 processes"
+  t0=$(now)
+  /usr/bin/time -f "fenicsx: max RSS %M kB (largest process)" $mpirun /usr/bin/python3 "$here/fenicsx_linear.py" "$lin" \
+    "$lin/fenicsx_u.xdmf" 2>&1 | grep -E "^fenicsx"
+  t_fx=$(secs "$t0" "$(now)")
+  echo "fenicsx: wall $t_fx s"
+  echo "linear: FEniCSx / ugs-solve = $(echo "scale=2; $t_fx / $t_ugs" | bc) (target >= 2)"
+fi
+
+# ---- 2. history -------------------------------------------------------------------------------
+if [[ ${SKIP_HISTORY:-0} != 1 ]]; then
+  his=$work/history
+  mkdir -p "$his"
+  if [[ ! -f $his/mesh.msh || "$(cat "$his/.scale" 2>/dev/null)" != "$scale" ]]; then
+    "$make_case" thesis "$his" --history --scale "$scale" 2>&1
+    echo "$scale" > "$his/.scale"
+  fi
+  args=("$his/mesh.msh" --case "$his/case.toml" --pressure "$his/flow_pool_a.h5" --pressure "$his/flow_pool_c.h5")
+  if [[ -n ${HISTORY_STEPS:-} ]]; then
+    # Production 1950-1964 first (state saved), then N months of storage cycles timed from a restart.
+    until_date=$(date -d "1964-01-01 + ${HISTORY_STEPS} months" +%Y-%m-%d)
+    echo "== history: 1950-1964 (production), then $HISTORY_STEPS steps to $until_date timed"
+    t0=$(now)
+    /usr/bin/time -f "ugs-solve (1950-1964): max RSS %M kB" $mpirun "$solve" "${args[@]}" -o "$his/prod.h5" --until 1964-01-01 \
+      -v 2>&1 | grep -E "[0-9]+ steps:|time:|RSS"
+    echo "ugs-solve (1950-1964): wall $(secs "$t0" "$(now)") s"
+    t0=$(now)
+    /usr/bin/time -f "ugs-solve (cycles): max RSS %M kB" $mpirun "$solve" "${args[@]}" -o "$his/cycles.h5" \
+      --restart "$his/prod_state.h5" --until "$until_date" -v 2>&1 | grep -E "[0-9]+ steps:|time:|RSS"
+    t=$(secs "$t0" "$(now)")
+    echo "ugs-solve (cycles): wall $t s for $HISTORY_STEPS steps: $(echo "scale=2; $t / $HISTORY_STEPS" | bc) s per step"
+  else
+    echo "== history: 1950-2033, 1,008 monthly steps"
+    t0=$(now)
+    /usr/bin/time -f "ugs-solve: max RSS %M kB (largest process)" $mpirun "$solve" "${args[@]}" -o "$his/history.h5" -v 2>&1 |
+      grep -E "[0-9]+ steps:|time:|RSS"
+    echo "ugs-solve (history): wall $(secs "$t0" "$(now)") s (target < 1800 s)"
+  fi
+fi
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -1,0 +1,98 @@
+// The faults as the contact solver sees them (thesis 3.5.2), built once on rank 0 from the faulted
+// mesh (interface elements of ugs-faultinsert, docs/faults.md) and the case file's [[fault]] entries.
+//
+// Node pairs. Every interface element (6-node prism: nodes 1-3 on side 1, nodes 4-6 their twins)
+// contributes its area A_e / 3 to each of its three node pairs (eq. 3.53); a pair carries one
+// Lagrange multiplier vector, piecewise constant on its share A_q of the fault (eq. 3.52), and the
+// coupling matrix C is lumped node to node: C_q = A_q R_q on side 2, -A_q R_q on side 1. Tip nodes
+// (one id on both sides) carry no multiplier: the displacement is continuous there.
+//
+// Local frame (eq. 3.43) per pair: the normal n is the area-weighted mean of the unit normals of the
+// pair's interface elements, oriented from side 1 to side 2 (the thesis' Gamma_T to Gamma_B); the
+// first tangent is the strike (horizontal, n x e_z normalised; e_x on a horizontal fault) and the
+// second the dip direction t2 = n x t1, so (t1, t2, n) is right-handed. On a planar fault every
+// pair and every element share the frame. Multipliers are the total traction on side 1 (the force
+// side 2 exerts per unit area, tension positive) in that frame: lambda = (tau_strike, tau_dip, sigma_n).
+//
+// Junctions: pairs of several faults meeting at a node form cycles of twin constraints (an X-junction
+// has four copies and four pairs), of which one per cycle is implied by the others. The pair that
+// closes a cycle (in fault, then element order) is marked redundant and its constraint rows get a
+// tiny perturbed-Lagrangian term, so the saddle-point matrix stays non-singular.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ugs/fem/voigt.hpp"
+#include "ugs/formats/case_file.hpp"
+#include "ugs/formats/mesh.hpp"
+#include "ugs/mechanics/model.hpp"
+
+namespace ugs::contact {
+
+struct FaultProperties {
+  std::string name;       // without "fault:"
+  std::string where;      // case file line of its [[fault]] entry
+  double cohesion = 0;    // Pa
+  double friction_deg = 30;
+  double mu = 0;          // tan(friction angle)
+  std::size_t elements = 0, pairs = 0, tip_nodes = 0;
+  double area = 0;        // m2
+};
+
+struct NodePair {
+  std::uint32_t side1 = 0, side2 = 0;  // mesh node indices (twins)
+  std::uint64_t tag1 = 0, tag2 = 0;    // their node tags
+  std::int32_t fault = 0;              // index into FaultModel::faults
+  double area = 0;                     // A_q [m2]
+  Point3 x{};                          // position
+  std::array<double, 9> R{};           // row-major 3x3, columns t1 (strike), t2 (dip), n
+  std::array<double, 3> lambda0{};     // initial total traction, local frame [Pa]
+  double p0 = 0;                       // initial fluid pressure on the fault [Pa]
+  double k = 0;                        // stiffness scale E_oed / h of the adjacent elements [Pa/m]
+  std::uint8_t fixed1 = 0, fixed2 = 0; // prescribed displacement components of the twins (bits x, y, z)
+  std::uint8_t active = 7;             // bit j: local component j acts on some free degree of freedom
+  bool redundant = false;              // closes a cycle of pairs at a junction
+};
+
+// The output surface: one triangle per interface element (its side-1 face), one node per node pair
+// of each fault (and one per tip node), in groups fault:<name> of dimension 2.
+struct FaultSurface {
+  Mesh mesh;
+  std::vector<std::int64_t> node_pair;                // pair of each surface node, -1 at tip nodes
+  std::vector<std::vector<std::uint32_t>> tip_neighbours;  // for tip nodes: surface nodes sharing a triangle
+  std::vector<std::int32_t> triangle_fault;
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // surface node indices (output order)
+};
+
+struct FaultModel {
+  std::vector<FaultProperties> faults;
+  std::vector<NodePair> pairs;
+  FaultSurface surface;
+  std::size_t redundant_pairs = 0;
+  std::size_t inactive_pairs = 0;      // normal component on prescribed dofs only (model boundary)
+};
+
+// Initial state of the faults: total stress (thesis Voigt order, Pa, tension positive) and fluid
+// pressure at a point; `biot` is the Biot coefficient of the rock on side 1.
+struct InitialFaultState {
+  std::function<fem::Vec6(const Point3& x, double biot)> total_stress;
+  std::function<double(const Point3& x)> pressure;
+};
+
+// The geostatic state of the case (mech::InitialState): sigma = sigma' - biot p0 I, p = p0.
+InitialFaultState geostatic_fault_state(const mech::InitialState& init);
+
+// Builds the pairs, frames, initial tractions and the output surface. InputError (exit 2) for:
+// [[fault]] entries whose fault:<name> has no interface elements in the mesh, interface elements in
+// a fault the case does not describe or in no fault group, interface elements whose nodes 4-6 are not
+// twins of nodes 1-3 (different coordinates), degenerate ones, and ones whose sides are not faces of
+// tetrahedra of the mesh.
+FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::Model& model, const InitialFaultState& init);
+
+// Local frame (t1, t2, n) of a unit normal, row-major with the axes as columns.
+std::array<double, 9> fault_frame(const Point3& n);
+
+}  // namespace ugs::contact

@@ -1,0 +1,51 @@
+// Calibration parameters as paths into the case file (TOML) and modified copies of the case.
+//
+// A path names tables and keys with dots; an array of tables ([[material]], [[pool]]) is indexed
+// by the `name` of its element (or by a number), an array of numbers by [i]:
+//   material.pool_c.c_R            initial_stress.k0            material.aquifer_pool_c.K_m_per_s[0]
+//   pool."Pool C".reference_pressure_MPa   (quotes for names with dots)
+// A parameter is one or more paths set to the same value, with bounds, optionally searched in log10:
+//   material.pool_c.c_R=2:6
+//   material.pool_c.c_R,material.aquifer_pool_c.c_R=2:6      (Pool C and its connected aquifer)
+//   material.aquifer_pool_c.K_m_per_s[0],material.aquifer_pool_c.K_m_per_s[1]=1e-8:1e-6:log
+// A modified copy keeps the case's text (comments, order, formatting): only the values change, and
+// file names relative to the case (schedules, ...) become absolute so the copy works anywhere.
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ugs::insar {
+
+struct ParameterSpec {
+  std::string name;                 // the paths as written, for tables and messages
+  std::vector<std::string> paths;   // case-file paths set to the same value
+  double lower = 0, upper = 0;
+  bool log_scale = false;
+};
+
+// InputError(text) when malformed: no '=', bad numbers, lower >= upper (bounds reversed), log scale
+// with a non-positive bound.
+ParameterSpec parse_parameter(const std::string& text);
+
+class CaseTemplate {
+public:
+  explicit CaseTemplate(const std::string& case_path);  // InputError if it does not parse as TOML
+  const std::string& path() const { return path_; }
+  const std::string& text() const { return text_; }
+
+  // The number at `path`; InputError("case.toml", "no parameter ...") when the path does not exist
+  // in this case or is not a number.
+  double value(const std::string& path) const;
+  // The case text with each path set to its value (shortest round-trip decimal) and relative file
+  // names made absolute.
+  std::string render(const std::vector<std::pair<std::string, double>>& values) const;
+
+private:
+  std::string path_, text_;
+};
+
+// Shortest decimal that reads back to `v`, always a TOML float ("3.0", "2.5e-07").
+std::string toml_float(double v);
+
+}  // namespace ugs::insar

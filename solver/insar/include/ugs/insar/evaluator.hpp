@@ -1,0 +1,101 @@
+// One calibration evaluation = the solver run for a set of parameter values, kept in a cache.
+//
+// For values x the evaluator renders a copy of the case with x (case_params.hpp), runs the
+// solver command template as a subprocess in a fresh folder ({case}, {out}, {mesh}, {dir} are
+// replaced by shell-quoted paths; the shell's ${VAR} is left alone), samples the displacement of
+// its result at the PS points in-process, and keeps the sampled series (not the results file,
+// unless asked) in
+//   CACHE/eval-<hash>/{case.toml, series.csv, entry.json, key.txt, solver.log}
+// The hash is that of the setup (case text, command template, mesh file identity) and of the
+// values, so a repeated run, or an optimizer coming back to a point, costs nothing; CACHE/index.csv
+// lists every entry. Up to `jobs` evaluations run at once; entries appear by atomic rename, so
+// several processes can share a cache.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "ugs/insar/case_params.hpp"
+#include "ugs/insar/misfit.hpp"
+
+namespace ugs::insar {
+
+// The displacement at the PS points at every result step (what an evaluation keeps).
+struct SimulatedSeries {
+  std::vector<std::string> ids;
+  std::vector<std::int64_t> times;
+  std::vector<double> enu;  // ids x times x 3 (m), absolute (not relative to a reference)
+
+  void write_csv(const std::string& path) const;
+  static SimulatedSeries read_csv(const std::string& path);
+  bool has(const std::string& id) const;
+  // Interpolated linearly in time at `dates` for `points` (by id), as Samples (no reference).
+  Samples at_dates(const std::vector<LocatedPoint>& points, const std::vector<std::int64_t>& dates) const;
+};
+
+struct EvaluatorSetup {
+  const CaseTemplate* case_template = nullptr;
+  std::vector<ParameterSpec> params;
+  std::string solver_command;                 // must contain {case} and {out}
+  std::string mesh_path;                      // for {mesh}
+  std::string cache_dir;
+  int jobs = 1;
+  bool keep_results = false;
+  std::string setup_extra;                    // anything else that changes a result (field name, ...)
+  std::vector<std::string> needed_ids;        // the series of these points must be in a cached entry
+  // Result file -> series at the PS points (in-process sampling).
+  std::function<SimulatedSeries(const std::string& result_h5)> sample;
+  // Series -> misfit.
+  std::function<Misfit(const SimulatedSeries&)> misfit;
+};
+
+struct Evaluation {
+  std::size_t index = 0;         // 1-based, in request order over the run
+  std::vector<double> x;         // parameter values (natural units)
+  Misfit misfit;
+  bool cached = false;
+  double seconds = 0;            // solver wall time (0 when cached)
+  std::string phase;             // "scan", "brent", "bobyqa", ...
+  std::string entry;             // cache entry folder
+};
+
+class Evaluator {
+public:
+  // InputError for a command template without {case} or {out} or with an unknown {placeholder}.
+  explicit Evaluator(EvaluatorSetup setup);
+
+  // Evaluates each x (up to `jobs` at once), results in the order given; ComputeError naming the
+  // evaluation, the exit code and the last log line when a solver run fails.
+  std::vector<Evaluation> evaluate(const std::vector<std::vector<double>>& xs, const std::string& phase);
+  const std::vector<Evaluation>& history() const { return history_; }
+  // Called after each evaluation (under a lock), e.g. to log progress.
+  std::function<void(const Evaluation&)> on_evaluation;
+
+  std::string entry_name(const std::vector<double>& x) const;
+  std::string key(const std::vector<double>& x) const;
+  const SimulatedSeries& series_of(const Evaluation& e);  // from the cache entry
+
+private:
+  Evaluation run_one(const std::vector<double>& x);
+  void write_index();
+
+  EvaluatorSetup setup_;
+  std::string setup_hash_;
+  std::vector<Evaluation> history_;
+  std::map<std::string, SimulatedSeries> series_;   // entry -> series (for the best one and reports)
+  std::map<std::string, std::string> index_rows_;   // entry -> CSV row
+  std::mutex mutex_;
+};
+
+// InputError for a solver command template without {case} or {out}, with an unknown
+// {placeholder}, or using {mesh} without a mesh.
+void check_command_template(const std::string& command, bool have_mesh);
+
+// 64-bit FNV-1a as 16 hex digits.
+std::string fnv1a_hex(const std::string& text);
+
+}  // namespace ugs::insar

@@ -1,0 +1,69 @@
+#include "ugs/insar/misfit.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/error.hpp"
+
+namespace ugs::insar {
+
+std::vector<SeriesMisfit> series_misfits(const PsData& measured, const Samples& sim, int component,
+                                         const MisfitWindow& window) {
+  if (sim.dates != measured.dates)
+    throw std::logic_error("series_misfits: simulated series not sampled at the measured dates");
+  std::vector<SeriesMisfit> out;
+  const char* name = component == 2 ? "up" : component == 0 ? "east" : "north";
+  for (std::size_t p = 0; p < sim.points.size(); ++p) {
+    const auto m = measured.find(sim.points[p].point.id);
+    if (!m) continue;
+    SeriesMisfit s;
+    s.id = sim.points[p].point.id;
+    s.component = name;
+    std::vector<double> r;
+    for (std::size_t d = 0; d < measured.dates.size(); ++d) {
+      if (!window.contains(measured.dates[d])) continue;
+      const double meas = measured.value_mm(*m, d), simv = sim.at(p, d)[component] * 1e3;
+      if (std::isnan(meas) || std::isnan(simv)) continue;
+      r.push_back(simv - meas);
+    }
+    s.n = r.size();
+    if (s.n > 0) {
+      double mean = 0;
+      for (double v : r) mean += v;
+      mean /= double(s.n);
+      double ss = 0;
+      for (double v : r) ss += (v - mean) * (v - mean);
+      s.offset_mm = mean;
+      s.sum_squares = ss;
+      s.rms_mm = std::sqrt(ss / double(s.n));
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+Misfit combine_misfits(std::vector<SeriesMisfit> up, std::vector<SeriesMisfit> east, double east_weight) {
+  Misfit m;
+  double ss = 0, w = 0;
+  for (const auto& s : up) {
+    ss += s.sum_squares;
+    w += double(s.n);
+    m.n += s.n;
+  }
+  if (east_weight > 0)
+    for (const auto& s : east) {
+      ss += east_weight * s.sum_squares;
+      w += east_weight * double(s.n);
+      m.n += s.n;
+    }
+  if (m.n == 0 || w <= 0)
+    throw InputError("", "no measured value falls in the misfit window at the chosen points (check --window, --points "
+                         "and the results' dates)");
+  m.rms_mm = std::sqrt(ss / w);
+  m.series = std::move(up);
+  if (east_weight > 0) m.series.insert(m.series.end(), east.begin(), east.end());
+  return m;
+}
+
+}  // namespace ugs::insar

@@ -1,0 +1,60 @@
+// The mechanical model as the solver sees it, built once (on rank 0) from the mesh and the case
+// file: the tetrahedra with their materials, the constitutive laws, the boundary conditions and
+// the geostatic initial state. Every check of the input happens here and throws ugs::InputError
+// naming the case file line or the mesh group at fault.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ugs/fem/material_point.hpp"
+#include "ugs/formats/case_file.hpp"
+#include "ugs/formats/mesh.hpp"
+
+namespace ugs::mech {
+
+// Geostatic initial state (in equilibrium, taken as the reference): with depth d = z_s - z,
+//   p0 = gamma_hyd d,  sigma'_v0 = -(gamma_lith - alpha gamma_hyd) d,  sigma'_h0 = k0 sigma'_v0.
+struct InitialState {
+  double surface_elevation = 0;  // m
+  double lithostatic = 0.0226e6; // Pa/m
+  double hydrostatic = 0.0100e6; // Pa/m
+  double k0 = 1.0;
+
+  // Initial effective stress (thesis Voigt order, Pa, tension positive) at elevation z.
+  fem::Vec6 effective_stress(double z, double biot) const;
+  double pore_pressure(double z) const;
+};
+
+struct Model {
+  std::vector<Point3> x;                           // node coordinates, mesh order
+  std::vector<fem::Material> materials;
+  // Tetrahedra in output order (formats/field.hpp: blocks of tetrahedra in mesh order).
+  std::vector<std::array<std::uint32_t, 4>> tets;  // mesh node indices
+  std::vector<std::int32_t> tet_material;          // index into materials
+  std::vector<std::uint64_t> tet_tags;             // element tags (stable through the pipeline)
+  // Per mesh node: bit c set = displacement component c prescribed; its value in `prescribed`
+  // (zero unless a test sets it: fixed boundaries and rollers prescribe zero).
+  std::vector<std::uint8_t> fixed;
+  std::vector<std::array<double, 3>> prescribed;
+  InitialState initial;
+  std::vector<std::uint32_t> top_nodes;            // nodes of bnd:top (sorted), for the surface table
+  std::vector<std::array<std::uint32_t, 3>> top_triangles;
+
+  std::size_t num_nodes() const { return fixed.size(); }
+  bool has_hypoplastic() const;
+};
+
+// Builds the model. Checks: a [[material]] for every mat:<name> group that has tetrahedra, valid
+// (positive definite) elastic parameters, the boundary groups named by the case exist, rollers sit on
+// planes normal to x, y or z, no interface elements (faults need the faulted solver).
+Model build_model(const Mesh& mesh, const CaseFile& cs);
+// The same, keeping a faulted mesh's interface elements out of the model (the fault contact,
+// ugs_contact, takes them) when `allow_interface_elements` is set.
+Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_elements);
+
+// fem::Material from a case [[material]] (InputError at its line when invalid).
+fem::Material material_from_spec(const MaterialSpec& spec, const CaseFile& cs);
+
+}  // namespace ugs::mech

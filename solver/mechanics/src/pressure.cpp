@@ -1,0 +1,191 @@
+#include "ugs/mechanics/pressure.hpp"
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
+
+namespace ugs::mech {
+
+struct PressureHistory::File {
+  std::unique_ptr<FieldSeriesReader> reader;
+  std::vector<std::uint32_t> mesh_index;  // mesh node of each file node
+  std::vector<double> times;
+  // The two steps last read (values per file node).
+  long cached[2] = {-1, -1};
+  std::vector<double> values[2];
+  bool before_used = false, after_used = false;
+
+  const std::vector<double>& step_values(long s) {
+    for (int k = 0; k < 2; ++k)
+      if (cached[k] == s) return values[k];
+    const int slot = cached[0] == -1 || (cached[1] != -1 && cached[0] < cached[1]) ? 0 : 1;
+    Field f = reader->node_field(static_cast<std::size_t>(s), "dp");
+    if (f.components != 1)
+      throw InputError(reader->path(), fmt::format("field 'dp' has {} components, expected 1 (pressure change in Pa)", f.components));
+    values[slot] = std::move(f.values);
+    cached[slot] = s;
+    return values[slot];
+  }
+};
+
+PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Mesh& mesh, const Model& model)
+    : num_nodes_(mesh.num_nodes()) {
+  const auto index = mesh.node_index_by_tag();
+  std::unordered_map<std::uint64_t, std::uint32_t> tet_of_tag;
+  tet_of_tag.reserve(model.tet_tags.size() * 2);
+  for (std::uint32_t e = 0; e < model.tet_tags.size(); ++e) tet_of_tag.emplace(model.tet_tags[e], e);
+  cell_file_.assign(model.tets.size(), -1);
+  cell_nodes_.assign(model.tets.size(), {-1, -1, -1, -1});
+  std::map<double, std::string> dates;
+  for (const auto& p : paths) {
+    auto f = std::make_unique<File>();
+    f->reader = std::make_unique<FieldSeriesReader>(p);
+    const auto tags = f->reader->node_tags();
+    f->mesh_index.resize(tags.size());
+    std::vector<std::int32_t> file_node(mesh.num_nodes(), -1);
+    std::size_t unknown = 0;
+    std::uint64_t first_unknown = 0;
+    for (std::size_t i = 0; i < tags.size(); ++i) {
+      auto it = index.find(tags[i]);
+      if (it == index.end()) {
+        if (!unknown++) first_unknown = tags[i];
+        continue;
+      }
+      f->mesh_index[i] = it->second;
+      file_node[it->second] = static_cast<std::int32_t>(i);
+    }
+    if (unknown)
+      throw InputError(p, fmt::format("node tag {} is not in the mesh ({} of {} node tags unknown): the pressure field was "
+                                      "computed on another mesh", first_unknown, unknown, tags.size()));
+    // The elements this pool's pressure acts on: its sub-mesh cells (tags kept by ugs-submesh), or
+    // failing cells, every element whose four nodes the file covers.
+    const int fi = static_cast<int>(files_.size());
+    auto claim = [&](std::uint32_t e) {
+      if (cell_file_[e] >= 0 && cell_file_[e] != fi)
+        throw InputError(p, fmt::format("element {} is also under the pressure of {}: pool sub-meshes must not overlap",
+                                        model.tet_tags[e], files_[cell_file_[e]]->reader->path()));
+      std::array<std::int32_t, 4> fn;
+      for (int k = 0; k < 4; ++k) {
+        fn[k] = file_node[model.tets[e][k]];
+        if (fn[k] < 0)
+          throw InputError(p, fmt::format("element {} lacks node {} in the file", model.tet_tags[e],
+                                          mesh.node_tags[model.tets[e][k]]));
+      }
+      cell_file_[e] = fi;
+      cell_nodes_[e] = fn;
+    };
+    const auto cell_tags = f->reader->cell_tags();
+    if (!cell_tags.empty()) {
+      std::size_t missing = 0;
+      std::uint64_t first_missing = 0;
+      for (auto t : cell_tags) {
+        auto it = tet_of_tag.find(t);
+        if (it == tet_of_tag.end()) {
+          if (!missing++) first_missing = t;
+          continue;
+        }
+        claim(it->second);
+      }
+      if (missing)
+        throw InputError(p, fmt::format("element tag {} is not a tetrahedron of the mesh ({} of {} cell tags unknown)",
+                                        first_missing, missing, cell_tags.size()));
+    } else {
+      for (std::uint32_t e = 0; e < model.tets.size(); ++e) {
+        const auto& t = model.tets[e];
+        if (file_node[t[0]] >= 0 && file_node[t[1]] >= 0 && file_node[t[2]] >= 0 && file_node[t[3]] >= 0) claim(e);
+      }
+    }
+    const auto& st = f->reader->steps();
+    if (st.empty()) throw InputError(p, "no steps");
+    for (std::size_t s = 0; s < st.size(); ++s) {
+      if (s > 0 && !(st[s].time > st[s - 1].time))
+        throw InputError(p, fmt::format("step {} ({}) is not later than step {} ({})", s, st[s].date, s - 1, st[s - 1].date));
+      f->times.push_back(st[s].time);
+      dates.emplace(st[s].time, st[s].date);
+    }
+    // Check the field now rather than after hours of computing.
+    f->step_values(0);
+    files_.push_back(std::move(f));
+  }
+  for (const auto& [t, d] : dates) steps_.push_back({d, t});
+}
+
+PressureHistory::~PressureHistory() = default;
+
+void PressureHistory::add_step(const std::string& date, const std::string& where) {
+  const auto t = parse_iso_date(date);
+  if (!t) throw InputError(where, fmt::format("'{}' is not an ISO 8601 date", date));
+  const double time = static_cast<double>(*t);
+  if (steps_.empty() || time < steps_.front().time || time > steps_.back().time)
+    throw InputError(where, fmt::format("output date {} lies outside the pressure history ({} .. {})", date,
+                                        steps_.empty() ? "" : steps_.front().date, steps_.empty() ? "" : steps_.back().date));
+  for (const auto& s : steps_)
+    if (s.time == time) return;
+  steps_.push_back({date, time});
+  std::sort(steps_.begin(), steps_.end(), [](const PressureStep& a, const PressureStep& b) { return a.time < b.time; });
+}
+
+std::vector<double> PressureHistory::file_values(File& f, double time) {
+  const auto& T = f.times;
+  if (time < T.front()) {
+    f.before_used = true;
+    return std::vector<double>(f.mesh_index.size(), 0.0);
+  }
+  const long s1 = static_cast<long>(std::upper_bound(T.begin(), T.end(), time) - T.begin());  // first later step
+  if (s1 == static_cast<long>(T.size())) {
+    if (time > T.back()) f.after_used = true;
+    return f.step_values(s1 - 1);
+  }
+  const long s0 = s1 - 1;
+  const double w = (time - T[s0]) / (T[s1] - T[s0]);
+  std::vector<double> v = f.step_values(s0);
+  if (w == 0) return v;
+  const auto& b = f.step_values(s1);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = (1 - w) * v[i] + w * b[i];
+  return v;
+}
+
+std::vector<double> PressureHistory::cell_dp(double time) {
+  std::vector<double> dp(cell_file_.size(), 0.0);
+  for (std::size_t fi = 0; fi < files_.size(); ++fi) {
+    const auto v = file_values(*files_[fi], time);
+    for (std::size_t e = 0; e < dp.size(); ++e)
+      if (cell_file_[e] == static_cast<std::int32_t>(fi)) {
+        const auto& n = cell_nodes_[e];
+        dp[e] = 0.25 * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]);
+      }
+  }
+  return dp;
+}
+
+std::vector<double> PressureHistory::node_dp(double time) {
+  std::vector<double> dp(num_nodes_, 0.0);
+  for (auto& f : files_) {
+    const auto v = file_values(*f, time);
+    for (std::size_t i = 0; i < v.size(); ++i) dp[f->mesh_index[i]] += v[i];
+  }
+  return dp;
+}
+
+std::size_t PressureHistory::forced_cells() const {
+  return static_cast<std::size_t>(std::count_if(cell_file_.begin(), cell_file_.end(), [](std::int32_t f) { return f >= 0; }));
+}
+
+std::vector<std::string> PressureHistory::notes() const {
+  std::vector<std::string> n;
+  for (const auto& f : files_) {
+    const auto& st = f->reader->steps();
+    if (f->before_used)
+      n.push_back(fmt::format("{}: starts {}; zero pressure change assumed before", f->reader->path(), st.front().date));
+    if (f->after_used)
+      n.push_back(fmt::format("{}: ends {}; its last pressure change is held after", f->reader->path(), st.back().date));
+  }
+  return n;
+}
+
+}  // namespace ugs::mech

@@ -1,0 +1,130 @@
+// contact_make_case — writes a small faulted ugs-solve case for the tool tests: a box of 50 m
+// cells (1000 x 600 x 1000 m) with a fault F dipping 45 degrees (fault_meshes.hpp) inserted by the
+// ugs-faultinsert library, a reservoir block crossed by the fault, the case file and the pressure
+// change that ugs-flow would write for the reservoir (node field dp on its sub-mesh, which holds the
+// fault's twin nodes, with parent node and element tags).
+//
+//   contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--cell M] [--extra TOML]
+//
+// --extra is appended to the [solver] table ("\n" separates lines).
+// Dates: 2000-01-01 (dp = 0, the reference of the scenario) and 2001-01-01 (dp).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "fault_meshes.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/fields.hpp"
+#include "ugs/formats/msh.hpp"
+
+using namespace ugs;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool in_reservoir(const Point3& c) { return c[0] > 350 && c[0] < 850 && c[1] > 150 && c[1] < 450 && c[2] > -600 && c[2] < -450; }
+
+Mesh submesh(const Mesh& m, const std::string& group) {
+  Mesh s;
+  std::vector<std::int64_t> local(m.num_nodes(), -1);
+  for (const auto& b : m.blocks) {
+    if (b.type != ElementType::Tetrahedron || m.physical_name_of(b.entity_dim, b.entity_tag) != group) continue;
+    const int e = s.entity_for_physical(3, group);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      std::uint32_t n[4];
+      const auto el = b.element(i);
+      for (int k = 0; k < 4; ++k) {
+        if (local[el[k]] < 0) local[el[k]] = s.add_node(m.nodes[el[k]], m.node_tags[el[k]]);
+        n[k] = static_cast<std::uint32_t>(local[el[k]]);
+      }
+      s.add_element(s.block(3, e, ElementType::Tetrahedron), n, b.tags[i]);
+    }
+  }
+  s.update_entity_bboxes();
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--extra TOML]\n");
+    return 2;
+  }
+  const fs::path dir = argv[1];
+  double dp = 5.0, friction = 30, cohesion = 0, cell = 50;
+  std::string extra;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string k = argv[i];
+    if (k == "--dp") dp = std::atof(argv[i + 1]);
+    else if (k == "--friction") friction = std::atof(argv[i + 1]);
+    else if (k == "--cohesion") cohesion = std::atof(argv[i + 1]);
+    else if (k == "--cell") cell = std::atof(argv[i + 1]);
+    else if (k == "--extra") {
+      extra = argv[i + 1];
+      for (std::size_t p; (p = extra.find("\\n")) != std::string::npos;) extra.replace(p, 2, "\n");
+    }
+  }
+  fs::create_directories(dir);
+  BoxMeshSpec spec;
+  spec.x = linspace(0, 1000, static_cast<int>(std::lround(1000 / cell)));
+  spec.y = linspace(0, 600, static_cast<int>(std::lround(600 / cell)));
+  spec.z = linspace(-1000, 0, static_cast<int>(std::lround(1000 / cell)));
+  spec.material = [](const Point3& c) { return in_reservoir(c) ? std::string("reservoir") : std::string("rock"); };
+  Mesh m = make_box_mesh(spec);
+  test::add_planar_fault(
+      m, "F", {300, 0, -1000}, {-1, 0, 1}, [](const Point3& c) { return c[1] > 100 && c[1] < 500 && c[2] > -800 && c[2] < -300; },
+      1e-6);
+  test::insert_all_faults(m);
+  m.provenance.push_back("contact_make_case (tests/contact)");
+  write_msh(m, (dir / "faulted.msh").string());
+
+  std::ofstream(dir / "case.toml") << fmt::format(R"(# Faulted test case (tests/contact): linear elastic rock, a reservoir block crossed by fault F.
+[initial_stress]
+surface_elevation_m = 0
+lithostatic_gradient_MPa_per_m = 0.0226
+hydrostatic_gradient_MPa_per_m = 0.0100
+k0 = 0.7
+
+[[material]]
+name = "rock"
+law = "linear"
+E_MPa = 10000
+nu = 0.25
+
+[[material]]
+name = "reservoir"
+law = "linear"
+E_MPa = 5000
+nu = 0.25
+
+[boundary]
+fixed = ["bottom", "west", "east", "south", "north"]
+
+[[fault]]
+name = "F"
+cohesion_MPa = {}
+friction_deg = {}
+
+[solver]
+linear_solver = "mumps"
+{})",
+                                                  cohesion, friction, extra);
+
+  const Mesh sub = submesh(m, "mat:reservoir");
+  FieldSeriesWriter w((dir / "flow.h5").string(), sub);
+  const char* dates[] = {"2000-01-01", "2001-01-01"};
+  for (int k = 0; k < 2; ++k) {
+    const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), k == 0 ? 0.0 : dp * 1e6)}};
+    w.add_step(dates[k], static_cast<double>(*parse_iso_date(dates[k])), f);
+  }
+  w.commit();
+  std::fprintf(stderr, "contact_make_case: %zu nodes, %zu tetrahedra, %zu interface elements; reservoir sub-mesh %zu nodes\n",
+               m.num_nodes(), m.count(ElementType::Tetrahedron), m.count(ElementType::Prism), sub.num_nodes());
+  return 0;
+}

@@ -1,0 +1,246 @@
+// ugs-solve on a faulted mesh, end to end (contact_make_case: a box with a 45-degree fault F
+// crossing a reservoir whose pressure rises by 6 MPa, or 3 MPa for the scale search):
+//  - the fault outputs: HDF5 + XDMF on the fault surface (triangles in fault:F, a cell field chi,
+//    node fields of tractions, slip, opening, state), the CSV per fault and date;
+//  - 1 and 2 MPI processes give the same fault results;
+//  - --find-safe-scale brackets the scale at which chi first reaches 1, which for this linear,
+//    sticking case follows in closed form from the runs at scales 0 and 1 (the tractions are
+//    linear in the scale): safe <= s* <= critical, critical - safe <= 1 % of critical;
+//  - bad input exits 2 leaving no results: friction outside (0, 90), negative cohesion, a case
+//    fault that is not in the mesh, a mesh fault the case does not describe, interface elements
+//    without twins, --restart; a Newton failure with slipping pairs exits 1 naming the fault and
+//    its nodes.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "run_tool.hpp"
+#include "ugs/formats/fields.hpp"
+#include "ugs/formats/msh.hpp"
+
+using namespace ugs;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Dir {
+  fs::path path;
+  explicit Dir(const std::string& tag) : path(test::temp_dir(tag)) {}
+  ~Dir() { fs::remove_all(path); }
+  std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+std::string make_case(const Dir& d, const std::string& args = "") {
+  return std::string(UGS_BINARY_DIR) + "/tests/contact/contact_make_case " + d.path.string() + " " + args;
+}
+
+std::string solve(const Dir& d, const std::string& args, int ranks = 1) {
+  const std::string tool = test::tool("ugs-solve");
+  const std::string pre = ranks > 1 ? "mpirun --allow-run-as-root --oversubscribe -n " + std::to_string(ranks) + " " : "";
+  return pre + tool + " " + d / "faulted.msh" + " --case " + d / "case.toml" + " --pressure " + d / "flow.h5" + " " + args;
+}
+
+void replace_in(const std::string& path, const std::string& from, const std::string& to) {
+  std::string text = test::slurp(path);
+  const auto p = text.find(from);
+  ASSERT_NE(p, std::string::npos) << from;
+  text.replace(p, from.size(), to);
+  test::spit(path, text);
+}
+
+// Node field of the last step of a fault output.
+Field last_node(const std::string& h5, const std::string& name) {
+  FieldSeriesReader r(h5);
+  return r.node_field(r.steps().size() - 1, name);
+}
+
+}  // namespace
+
+TEST(SolveFaults, OutputsOnTheFaultSurface) {
+  Dir d("solve-faults");
+  ASSERT_EQ(test::run(make_case(d, "--dp 6")).exit_code, 0);
+  const auto r = test::run(solve(d, "-o " + d / "out.h5 -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("fault F: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("max chi"), std::string::npos) << r.err;
+  for (const char* f : {"out.h5", "out.xdmf", "out_top.h5", "out_faults.h5", "out_faults.xdmf", "out_faults.csv"})
+    EXPECT_TRUE(fs::exists(d / f)) << f;
+
+  FieldSeriesReader faults(d / "out_faults.h5");
+  ASSERT_EQ(faults.steps().size(), 2u);
+  EXPECT_EQ(faults.cell_types(), std::vector<ElementType>{ElementType::Triangle});
+  const Mesh mesh = read_msh(d / "faulted.msh");
+  EXPECT_EQ(faults.num_cells(), mesh.count(ElementType::Prism));
+  const Field chi = faults.cell_field(1, "chi");
+  ASSERT_EQ(chi.count(), faults.num_cells());
+  double cmax = 0;
+  for (double c : chi.values) {
+    EXPECT_GE(c, 0.0);
+    EXPECT_LE(c, 1.0 + 1e-12);
+    cmax = std::max(cmax, c);
+  }
+  EXPECT_GT(cmax, 0.2);
+  for (const char* f : {"traction", "sigma_n", "sigma_n_eff", "tau", "tau_abs", "slip", "slip_abs", "opening", "u_r", "state",
+                        "chi", "cfs_change", "p_fault", "interpolated"})
+    EXPECT_NO_THROW(faults.node_field(1, f)) << f;
+  // Effective normal stress = total + fluid pressure: compressive where the fault is closed, zero
+  // where it opened (the 6 MPa rise opens part of it).
+  const Field sn = faults.node_field(1, "sigma_n"), sne = faults.node_field(1, "sigma_n_eff"), p = faults.node_field(1, "p_fault");
+  const Field state = faults.node_field(1, "state"), opening = faults.node_field(1, "opening");
+  const Field interp = faults.node_field(1, "interpolated");
+  std::size_t open = 0, slip = 0;
+  for (std::size_t i = 0; i < sn.count(); ++i) {
+    EXPECT_NEAR(sne.values[i], sn.values[i] + p.values[i], 1e-6 * std::abs(sn.values[i]) + 1e-6);
+    if (interp.values[i] != 0) continue;
+    if (state.values[i] == 2) {
+      ++open;
+      EXPECT_NEAR(sne.values[i], 0.0, 1e-3);
+      EXPECT_GT(opening.values[i], 0.0);
+    } else {
+      slip += state.values[i] == 1;
+      EXPECT_LT(sne.values[i], 0.0);
+      EXPECT_NEAR(opening.values[i], 0.0, 1e-12);
+    }
+  }
+  std::printf("fault F at +6 MPa: %zu node pairs open, %zu slipping\n", open, slip);
+  // The volume results hold the tetrahedra only.
+  FieldSeriesReader vol(d / "out.h5");
+  EXPECT_EQ(vol.num_cells(), mesh.count(ElementType::Tetrahedron));
+
+  const std::string csv = test::slurp(d / "out_faults.csv");
+  EXPECT_NE(csv.find("date,fault,max_chi,x_m,y_m,z_m,max_slip_mm,slip_area_m2,open_area_m2,max_opening_mm,max_cfs_change_MPa,"
+                     "node_pairs,slipping,open"),
+            std::string::npos);
+  EXPECT_NE(csv.find("\n2000-01-01,F,"), std::string::npos);
+  EXPECT_NE(csv.find("\n2001-01-01,F,"), std::string::npos);
+
+  // Two MPI processes: the same fault results.
+  const auto r2 = test::run(solve(d, "-o " + d / "mpi.h5", 2));
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  for (const char* f : {"traction", "slip", "chi"}) {
+    const Field a = last_node(d / "out_faults.h5", f), b = last_node(d / "mpi_faults.h5", f);
+    ASSERT_EQ(a.values.size(), b.values.size());
+    double amax = 0, diff = 0;
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+      amax = std::max(amax, std::abs(a.values[i])), diff = std::max(diff, std::abs(a.values[i] - b.values[i]));
+    EXPECT_LE(diff, 1e-6 * amax + 1e-12) << f;
+  }
+}
+
+TEST(SolveFaults, SafeScaleMatchesTheClosedForm) {
+  Dir d("solve-faults-scale");
+  ASSERT_EQ(test::run(make_case(d, "--dp 3")).exit_code, 0);
+  auto r = test::run(solve(d, "-o " + d / "s0.h5 --scale 0 --fault-csv none"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = test::run(solve(d, "-o " + d / "s1.h5 --find-safe-scale"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("maximum safe scale"), std::string::npos) << r.err;
+  // The bracket from the scenario table: the largest safe and the smallest critical scale tried.
+  const std::string table = test::slurp(d / "s1_scenario.csv");
+  double safe = 0, critical = 1e300;
+  std::size_t trials = 0;
+  for (std::size_t p = table.find("\n"); p != std::string::npos && p + 1 < table.size(); p = table.find('\n', p + 1)) {
+    if (table[p + 1] == '#' || table[p + 1] == 's') continue;
+    double s = 0, chi = 0;
+    int crit = 0;
+    if (std::sscanf(table.c_str() + p + 1, "%lf,%lf,%d", &s, &chi, &crit) != 3) continue;
+    ++trials;
+    if (crit) critical = std::min(critical, s);
+    else safe = std::max(safe, s);
+  }
+  ASSERT_GT(trials, 3u);
+  ASSERT_LT(critical, 1e300);
+  // Closed form: tau(s) = tau0 + s (tau1 - tau0), sigma'_n(s) likewise; chi(s) = 1 where
+  // |tau(s)| = c - sigma'_n(s) tan(phi), c = 0, phi = 30 degrees, over the node pairs.
+  const double mu = std::tan(30 * M_PI / 180);
+  const Field t0 = last_node(d / "s0_faults.h5", "tau"), t1 = last_node(d / "s1_faults.h5", "tau");
+  const Field n0 = last_node(d / "s0_faults.h5", "sigma_n_eff"), n1 = last_node(d / "s1_faults.h5", "sigma_n_eff");
+  const Field interp = last_node(d / "s1_faults.h5", "interpolated");
+  double s_star = 1e300;
+  for (std::size_t i = 0; i < n0.count(); ++i) {
+    if (interp.values[i] != 0) continue;
+    // |a + s b|^2 = (mu (c0 + s c1))^2 with c0 = -sigma'_n0, c1 = -(sigma'_n1 - sigma'_n0).
+    double A = 0, B = 0, C = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double a = t0.values[3 * i + k], b = t1.values[3 * i + k] - a;
+      A += b * b, B += 2 * a * b, C += a * a;
+    }
+    const double c0 = -n0.values[i], c1 = -(n1.values[i] - n0.values[i]);
+    A -= mu * mu * c1 * c1, B -= 2 * mu * mu * c0 * c1, C -= mu * mu * c0 * c0;
+    // Smallest positive root of A s^2 + B s + C (C < 0: below the limit at s = 0).
+    const double disc = B * B - 4 * A * C;
+    if (disc < 0) continue;
+    for (double s : {(-B - std::sqrt(disc)) / (2 * A), (-B + std::sqrt(disc)) / (2 * A)})
+      if (s > 0) s_star = std::min(s_star, s);
+  }
+  std::printf("safe-scale search: %zu trials, bracket [%.4f, %.4f]; closed form s* = %.4f\n", trials, safe, critical, s_star);
+  EXPECT_GT(s_star, 1.0);  // the base run is safe
+  EXPECT_LE(safe, s_star * (1 + 1e-6));
+  EXPECT_GE(critical, s_star * (1 - 1e-6));
+  EXPECT_LE(critical - safe, 0.01 * critical * (1 + 1e-9));
+}
+
+TEST(SolveFaults, BadInputExitsTwoWithoutResults) {
+  Dir d("solve-faults-bad");
+  ASSERT_EQ(test::run(make_case(d)).exit_code, 0);
+  const std::string good = test::slurp(d / "case.toml");
+  auto expect2 = [&](const std::string& what, const std::string& args, const std::string& needle) {
+    const auto r = test::run(solve(d, "-o " + d / "bad.h5 " + args));
+    EXPECT_EQ(r.exit_code, 2) << what << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << what << ": " << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << what << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << ": " << r.err;
+    for (const char* f : {"bad.h5", "bad.xdmf", "bad_faults.h5", "bad_faults.csv", "bad_top.h5"})
+      EXPECT_FALSE(fs::exists(d / f)) << what << ": " << f;
+    test::spit(d / "case.toml", good);
+  };
+  replace_in(d / "case.toml", "friction_deg = 30", "friction_deg = 95");
+  expect2("friction", "", "friction_deg");
+  replace_in(d / "case.toml", "friction_deg = 30", "friction_deg = 0");
+  expect2("friction zero", "", "friction_deg");
+  replace_in(d / "case.toml", "cohesion_MPa = 0", "cohesion_MPa = -1");
+  expect2("cohesion", "", "cohesion_MPa");
+  test::spit(d / "case.toml", good + "\n[[fault]]\nname = \"G\"\n");
+  expect2("case fault not in the mesh", "", "fault 'G' is not in the mesh");
+  replace_in(d / "case.toml", "name = \"F\"", "name = \"H\"");
+  expect2("mesh fault not in the case", "", "fault 'H' is not in the mesh");
+  {
+    std::string t = good;
+    const auto p = t.find("[[fault]]"), q = t.find("[solver]");
+    t.erase(p, q - p);
+    test::spit(d / "case.toml", t);
+    expect2("mesh fault without an entry", "", "no [[fault]] entry named 'F'");
+  }
+  expect2("restart", "--restart " + d / "nothing.h5", "--restart");
+  {
+    // Move the twin of one interface element's node: no twin any more.
+    Mesh m = read_msh(d / "faulted.msh");
+    bool moved = false;
+    for (auto& b : m.blocks)
+      for (std::size_t k = 0; b.type == ElementType::Prism && k < b.nodes.size() && !moved; k += 6)
+        if (b.nodes[k] != b.nodes[k + 3]) {  // not a tip node: its twin is another node
+          m.nodes[b.nodes[k + 3]][0] += 1.0;
+          moved = true;
+        }
+    ASSERT_TRUE(moved);
+    write_msh(m, d / "faulted.msh");
+    expect2("twins", "", "has no twin");
+  }
+}
+
+TEST(SolveFaults, NewtonFailureNamesTheFaultAndItsNodes) {
+  Dir d("solve-faults-fail");
+  // Friction 5 degrees: the geostatic stress exceeds the strength, the first step slips widely,
+  // and one Newton iteration cannot settle it.
+  ASSERT_EQ(test::run(make_case(d, "--friction 5 --extra 'max_newton_iterations = 1\nmax_substeps = 1'")).exit_code, 0);
+  const auto r = test::run(solve(d, "-o " + d / "fail.h5"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const auto line = r.err.rfind("ugs-solve: error: ");  // the last line, after the log
+  ASSERT_NE(line, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n', line), r.err.size() - 1) << r.err;
+  EXPECT_NE(r.err.find("fault 'F'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("node pairs"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(d / "fail.h5"));
+  EXPECT_FALSE(fs::exists(d / "fail_faults.h5"));
+}

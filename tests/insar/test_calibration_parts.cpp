@@ -1,0 +1,138 @@
+// Pieces of the calibration: parameter specs and modified case copies, the offset-free RMS
+// misfit, Brent's minimiser.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "run_tool.hpp"
+#include "ugs/formats/case_file.hpp"
+#include "ugs/formats/error.hpp"
+#include "ugs/insar/case_params.hpp"
+#include "ugs/insar/misfit.hpp"
+#include "ugs/insar/optimizer.hpp"
+
+using namespace ugs;
+using namespace ugs::insar;
+
+namespace {
+const std::string kCase = std::string(UGS_SOURCE_DIR) + "/data-samples/po-plain/case.toml";
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(CaseParameters, ParseSpecs) {
+  const auto p = parse_parameter("material.pool_c.c_R=2:6");
+  ASSERT_EQ(p.paths.size(), 1u);
+  EXPECT_EQ(p.paths[0], "material.pool_c.c_R");
+  EXPECT_EQ(p.lower, 2.0);
+  EXPECT_EQ(p.upper, 6.0);
+  EXPECT_FALSE(p.log_scale);
+  const auto q = parse_parameter("material.pool_c.c_R,material.aquifer_pool_c.c_R=2.5:5.5");
+  EXPECT_EQ(q.paths.size(), 2u);
+  const auto k = parse_parameter("material.aquifer_pool_c.K_m_per_s[0]=1e-8:1e-6:log");
+  EXPECT_TRUE(k.log_scale);
+  EXPECT_EQ(k.upper, 1e-6);
+  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R=6:2"); }).find("bounds reversed"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R=3:3"); }).find("not below"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R"); }).find("PATH=LOWER:UPPER"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R=a:3"); }).find("LOWER:UPPER"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_parameter("x=-1:3:log"); }).find("positive"), std::string::npos);
+}
+
+TEST(CaseParameters, ValuesAndMissingParameters) {
+  const CaseTemplate c(kCase);
+  EXPECT_EQ(c.value("material.pool_c.c_R"), 3.0);
+  EXPECT_EQ(c.value("material.pool_a.c_R"), 5.0);
+  EXPECT_EQ(c.value("initial_stress.k0"), 0.9);
+  EXPECT_EQ(c.value("material.aquifer_pool_c.K_m_per_s[2]"), 2.04e-8);
+  EXPECT_EQ(c.value("pool.\"Pool C\".reference_pressure_MPa"), 15.2055);
+  EXPECT_NE(error_of([&] { c.value("material.pool_x.c_R"); }).find("no [[material]] named 'pool_x'"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.value("material.surrounding_rock.c_R"); }).find("has no key 'c_R'"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.value("material.pool_c.name"); }).find("not a number"), std::string::npos);
+  EXPECT_NE(error_of([&] { c.value("nothing.here"); }).find("no parameter 'nothing.here'"), std::string::npos);
+}
+
+TEST(CaseParameters, RenderedCopyKeepsTextChangesValuesAndReadsBack) {
+  const CaseTemplate c(kCase);
+  const std::string out = c.render({{"material.pool_c.c_R", 3.75}, {"material.aquifer_pool_c.c_R", 3.75},
+                                    {"material.aquifer_pool_c.K_m_per_s[0]", 4e-7}});
+  // Comments survive; only the values changed; schedules became absolute.
+  EXPECT_NE(out.find("# Case file of the po-plain synthetic twin"), std::string::npos);
+  EXPECT_NE(out.find("c_R = 3.75                 # loading / unloading-reloading compressibility"), std::string::npos);
+  EXPECT_NE(out.find("K_m_per_s = [4e-07, 2.04e-7, 2.04e-8]"), std::string::npos);
+  const std::string abs_dir = std::filesystem::weakly_canonical(std::filesystem::path(kCase).parent_path()).string();
+  EXPECT_NE(out.find("schedule = \"" + abs_dir + "/pressure_pool_c.csv\""), std::string::npos);
+  const auto dir = test::temp_dir("case-render");
+  test::spit(dir / "case.toml", out);
+  const CaseFile cf = read_case_file((dir / "case.toml").string());
+  EXPECT_EQ(cf.material("pool_c")->c_R, 3.75);
+  EXPECT_EQ(cf.material("aquifer_pool_c")->c_R, 3.75);
+  EXPECT_EQ(cf.material("pool_a")->c_R, 5.0);
+  EXPECT_EQ((*cf.material("aquifer_pool_c")->K)[0], 4e-7);
+  EXPECT_EQ(cf.pools[1].schedule, abs_dir + "/pressure_pool_c.csv");
+  EXPECT_EQ(toml_float(3.0), "3.0");
+  EXPECT_EQ(toml_float(0.1), "0.1");
+}
+
+TEST(Misfit, OffsetIsRemovedAndRmsPooled) {
+  PsData meas;
+  meas.dates = {0, 86400, 2 * 86400, 3 * 86400};
+  meas.points = {{"a", 0, 0, {}, ""}, {"b", 0, 0, {}, ""}};
+  // a: simulated = measured + 5 mm + (+1, -1, +1, -1); b: measured has a gap.
+  meas.values_mm = {0, 1, 2, 3, 10, NAN, 12, 13};
+  Samples sim;
+  sim.dates = meas.dates;
+  sim.points = {{meas.points[0], {}}, {meas.points[1], {}}};
+  sim.enu.assign(2 * 4 * 3, 0.0);
+  const double da[] = {6, 5, 8, 7};   // meas + 5 + (1, -1, 1, -1)
+  const double db[] = {10, 99, 12, 16};
+  for (int d = 0; d < 4; ++d) {
+    sim.enu[(0 * 4 + d) * 3 + 2] = da[d] * 1e-3;
+    sim.enu[(1 * 4 + d) * 3 + 2] = db[d] * 1e-3;
+  }
+  const auto up = series_misfits(meas, sim, 2, {});
+  ASSERT_EQ(up.size(), 2u);
+  EXPECT_EQ(up[0].n, 4u);
+  EXPECT_NEAR(up[0].offset_mm, 5.0, 1e-12);
+  EXPECT_NEAR(up[0].rms_mm, 1.0, 1e-12);
+  EXPECT_EQ(up[1].n, 3u);  // the gap is skipped
+  EXPECT_NEAR(up[1].offset_mm, 1.0, 1e-12);  // residuals 0, 0, 3
+  EXPECT_NEAR(up[1].rms_mm, std::sqrt(6.0 / 3.0), 1e-12);
+  const Misfit m = combine_misfits(up, {}, 0);
+  EXPECT_NEAR(m.rms_mm, std::sqrt((4.0 + 6.0) / 7.0), 1e-12);
+  // A window keeping the first two dates only.
+  MisfitWindow w{0, 86400};
+  const auto win = series_misfits(meas, sim, 2, w);
+  EXPECT_EQ(win[0].n, 2u);
+  EXPECT_EQ(win[1].n, 1u);
+  EXPECT_NEAR(win[1].rms_mm, 0.0, 1e-12);
+  MisfitWindow none{5 * 86400, 6 * 86400};
+  EXPECT_THROW(combine_misfits(series_misfits(meas, sim, 2, none), {}, 0), InputError);
+}
+
+TEST(Brent, FindsTheMinimumOfAParabolaAndOfAnAsymmetricFunction) {
+  int calls = 0;
+  auto f = [&](double x) {
+    ++calls;
+    return (x - 0.3217) * (x - 0.3217) + 2.0;
+  };
+  const auto r = brent_minimize(f, 0, 1, 0.5, f(0.5), 1e-6, 100);
+  EXPECT_TRUE(r.converged);
+  EXPECT_NEAR(r.x, 0.3217, 1e-5);
+  EXPECT_LT(r.evaluations, 15);
+  auto g = [](double x) { return std::exp(3 * x) - 8 * x; };  // minimum at ln(8/3)/3
+  const auto q = brent_minimize(g, 0, 1, 0.9, g(0.9), 1e-7, 100);
+  EXPECT_NEAR(q.x, std::log(8.0 / 3.0) / 3.0, 1e-5);
+  // At a bound.
+  auto h = [](double x) { return x; };
+  const auto b = brent_minimize(h, 0, 1, 0.5, 0.5, 1e-4, 100);
+  EXPECT_LT(b.x, 1e-3);
+}

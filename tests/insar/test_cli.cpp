@@ -1,0 +1,162 @@
+// ugs-sample and ugs-calibrate from the command line: sampling an EGMS file (EPSG:3035) on a
+// model in EPSG:32632 reproduces a linear field, with line-of-sight columns; bad inputs end with
+// exit code 2 and one line naming the file and what is wrong.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "insar_fixtures.hpp"
+#include "run_tool.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/msh.hpp"
+#include "ugs/insar/crs.hpp"
+#include "ugs/insar/los.hpp"
+
+using namespace ugs;
+namespace fs = std::filesystem;
+
+namespace {
+
+const test::LinearField kF1{{0.001, -0.002, 0.003}, {{1e-6, 2e-6, -3e-6}, {-2e-6, 5e-7, 1e-6}, {3e-6, -1e-6, 2e-6}}};
+const test::LinearField kF2{{-0.004, 0.001, 0.002}, {{-2e-6, 1e-6, 4e-6}, {1e-6, -3e-6, 2e-6}, {-1e-6, 2e-6, -5e-6}}};
+
+struct Model {
+  fs::path dir;
+  Mesh mesh;
+};
+
+// Mesh, results at 2015-05-01 (field 1) and 2015-11-01 (field 2), and an EGMS file of 4 points
+// (3 inside, 1 outside) with dates 2015-06-01 and 2015-09-01.
+Model write_model(const std::string& tag) {
+  Model m{test::temp_dir(tag), test::undulating_box(680000, 4950000, 1000, 800, 500, 10, 8, 5, 20)};
+  write_msh(m.mesh, (m.dir / "model.msh").string());
+  FieldSeriesWriter w((m.dir / "run.h5").string(), m.mesh);
+  const Field f1[] = {kF1.field(m.mesh)};
+  const Field f2[] = {kF2.field(m.mesh)};
+  w.add_step("2015-05-01", double(*parse_iso_date("2015-05-01")), f1);
+  w.add_step("2015-11-01", double(*parse_iso_date("2015-11-01")), f2);
+  w.commit();
+  std::vector<double> x{680123.4, 680555.5, 680987.6, 681500.0}, y{4950111.1, 4950400.0, 4950777.7, 4950400.0};
+  insar::CoordinateTransform ct(insar::any_crs_wkt("EPSG:32632", "t"), insar::any_crs_wkt("EPSG:3035", "t"), "t");
+  ct.apply(x, y, {});
+  std::string csv = "pid,easting,northing,height,rmse,20150601,20150901\n";
+  for (int i = 0; i < 4; ++i) csv += fmt::format("P{},{:.4f},{:.4f},10,1,0,1.5\n", i + 1, x[i], y[i]);
+  test::spit(m.dir / "ps.csv", csv);
+  return m;
+}
+
+// Exit code 2 and the error is one line, the last on stderr (warnings may come before it).
+bool one_line_error(const test::RunResult& r, const std::string& tool, const std::string& needle) {
+  const auto at = r.err.find(tool + ": error: ");
+  return r.exit_code == 2 && at != std::string::npos && (at == 0 || r.err[at - 1] == '\n') &&
+         r.err.find('\n', at) == r.err.size() - 1 && r.err.find(needle, at) != std::string::npos;
+}
+
+}  // namespace
+
+TEST(SampleCli, EgmsPointsOnTheModelReproduceTheLinearField) {
+  const Model m = write_model("sample-cli");
+  const std::string d = m.dir.string() + "/";
+  const auto r = test::run(test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --points " + d +
+                           "ps.csv --crs EPSG:32632 --at-ps-dates --ascending 35/-10 --descending 40/190 -o " + d + "s.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("point 'P4'"), std::string::npos) << r.err;  // outside: reported
+  const CsvTable t = CsvTable::read(d + "s.csv");
+  ASSERT_EQ(t.rows(), 3u * 2u);  // 3 points inside, 2 PS dates
+  const std::int64_t t1 = *parse_iso_date("2015-05-01"), t2 = *parse_iso_date("2015-11-01");
+  const std::int64_t ref = *parse_iso_date("2015-06-01");
+  auto field_at = [&](const Point3& p, std::int64_t t) {
+    const double w = double(t - t1) / double(t2 - t1);
+    const auto a = kF1.at(p), b = kF2.at(p);
+    return std::array<double, 3>{(1 - w) * a[0] + w * b[0], (1 - w) * a[1] + w * b[1], (1 - w) * a[2] + w * b[2]};
+  };
+  const insar::LosGeometry asc{"asc", 35, -10}, desc{"desc", 40, 190};
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    const Point3 p{t.number(i, t.column("x_surface_m")), t.number(i, t.column("y_surface_m")), t.number(i, t.column("z_surface_m"))};
+    EXPECT_NEAR(p[0], t.number(i, t.column("x_m")), 1e-3);  // inside: sampled where asked
+    EXPECT_EQ(t.number(i, t.column("offset_m")), 0.0);
+    const auto u = field_at(p, t.date(i, t.column("date"))), u0 = field_at(p, ref);
+    const std::array<double, 3> du{u[0] - u0[0], u[1] - u0[1], u[2] - u0[2]};
+    // The surface height is printed to 1 mm: the field's z-gradient (5e-6) makes that 5e-9 m.
+    EXPECT_NEAR(t.number(i, t.column("east_mm")), du[0] * 1e3, 2e-5);
+    EXPECT_NEAR(t.number(i, t.column("north_mm")), du[1] * 1e3, 2e-5);
+    EXPECT_NEAR(t.number(i, t.column("up_mm")), du[2] * 1e3, 2e-5);
+    EXPECT_NEAR(t.number(i, t.column("los_asc_mm")), insar::los_displacement(du, asc) * 1e3, 2e-5);
+    EXPECT_NEAR(t.number(i, t.column("los_desc_mm")), insar::los_displacement(du, desc) * 1e3, 2e-5);
+  }
+  // The reprojected locations match the EPSG:32632 ones to a millimetre.
+  EXPECT_NEAR(t.number(0, t.column("x_m")), 680123.4, 1e-3);
+  EXPECT_NEAR(t.number(0, t.column("y_m")), 4950111.1, 1e-3);
+  // --keep-outside: P4 sampled at the nearest surface point, 500 m away.
+  const auto k = test::run(test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --points " + d +
+                           "ps.csv --crs EPSG:32632 --keep-outside -o " + d + "k.csv");
+  ASSERT_EQ(k.exit_code, 0) << k.err;
+  const CsvTable kt = CsvTable::read(d + "k.csv");
+  ASSERT_EQ(kt.rows(), 4u * 2u);  // every point at both result steps
+  EXPECT_NEAR(kt.number(7, kt.column("offset_m")), 500.0, 1e-3);
+  EXPECT_EQ(kt.text(7, kt.column("inside")), "0");
+  fs::remove_all(m.dir);
+}
+
+TEST(SampleCli, BadInputs) {
+  const Model m = write_model("sample-bad");
+  const std::string d = m.dir.string() + "/";
+  const std::string base = test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --crs EPSG:32632 ";
+  test::spit(m.dir / "nocol.csv", "pid,easting,height,20150601\nA,4300000,1,0\n");
+  auto r = test::run(base + "--points " + d + "nocol.csv -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "nocol.csv:1: no column 'northing'")) << r.err;
+  test::spit(m.dir / "baddate.csv", "pid,easting,northing,20150601,20151301\nA,4300000,2400000,0,1\n");
+  r = test::run(base + "--points " + d + "baddate.csv -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "baddate.csv:1: column '20151301' is not a date")) << r.err;
+  test::spit(m.dir / "nodata.csv", "pid,easting,northing,20150601,20150901\nA,4300000,2400000,0,1\nB,4300000,2400010,,\n");
+  r = test::run(base + "--points " + d + "nodata.csv -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "nodata.csv:3: point 'B' has no data")) << r.err;
+  test::spit(m.dir / "far.csv", "pid,x,y\nA,0,0\n");
+  r = test::run(base + "--points " + d + "far.csv -o " + d + "o.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("none of the 1 points lies on the top surface"), std::string::npos) << r.err;
+  r = test::run(test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --points " + d + "ps.csv -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "the model CRS is unknown")) << r.err;
+  r = test::run(base + "--points " + d + "ps.csv --ascending 35 -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "INCIDENCE/HEADING")) << r.err;
+  r = test::run(base + "--points " + d + "ps.csv --reference 2030-01-01 -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "outside the results")) << r.err;
+  EXPECT_FALSE(fs::exists(m.dir / "o.csv"));  // nothing written on any error
+  fs::remove_all(m.dir);
+}
+
+TEST(CalibrateCli, BadInputs) {
+  const auto dir = test::temp_dir("calibrate-bad");
+  const std::string d = dir.string() + "/";
+  test::spit(dir / "case.toml", "crs = \"EPSG:32632\"\n[[material]]\nname = \"pool_c\"\nlaw = \"hypoplastic\"\nc_R = 3.0\n");
+  test::spit(dir / "up.csv", "pid,easting,northing,20150601,20150901\nA,4300000,2400000,0,1\n");
+  const std::string base = test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d + "up.csv --solver-command 'true {case} {out}' -o " + d + "out ";
+  auto r = test::run(base + "--param material.pool_c.c_R=6:2");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "bounds reversed")) << r.err;
+  r = test::run(base + "--param material.pool_x.c_R=2:6");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "no [[material]] named 'pool_x'")) << r.err;
+  r = test::run(base + "--param material.pool_c.E_MPa=2:6");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "has no key 'E_MPa'")) << r.err;
+  r = test::run(base + "--param material.pool_c.c_R=0:6");  // c_R = 0 is not a valid case
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "the case is not valid at")) << r.err;
+  r = test::run(base + "--param material.pool_c.c_R=2:6 --window 2020-01-01/2010-01-01");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "start after end")) << r.err;
+  test::spit(dir / "nocol.csv", "pid,northing,20150601\nA,2400000,0\n");
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
+                "nocol.csv --solver-command 'true {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "nocol.csv:1: no column 'easting'")) << r.err;
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
+                "up.csv --solver-command 'true {case}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "{out}")) << r.err;
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
+                "up.csv --solver-command 'x {case} {out} {results}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "unknown placeholder {results}")) << r.err;
+  // A solver that fails: exit 1, naming the evaluation and the log (the shell's ${VAR} is left alone).
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
+                "up.csv --solver-command 'V=diverged; echo ${V}; exit 3; {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("the solver exited with code 3: diverged"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}

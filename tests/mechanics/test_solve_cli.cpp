@@ -1,0 +1,273 @@
+// ugs-solve end to end: V1 through the tool (the three inversion rules, c_M in use and loading
+// state), the same problem on 1 and 2 MPI processes, restart against an uninterrupted run, the
+// top-surface outputs, PETSc options, direct solvers, bad input (exit 2) and a failing step (exit 1).
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "solve_support.hpp"
+
+using namespace ugs;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double a = 1.0044e-2, b = 1.1347;
+double cM(double s) { return a * std::pow(s, -b); }
+double virgin(double s0, double s1) { return a * (std::pow(s1, 1 - b) - std::pow(s0, 1 - b)) / (1 - b); }
+
+// Column shortening [m] at each date of the V1 case (4 layers of 0.25 m about sigma'_v0 = 20 MPa).
+std::vector<double> v1_shortening(const std::string& rule, double cR) {
+  const double d20 = 20.0 / 0.0126;
+  std::vector<double> total(5, 0.0);
+  for (int k = 0; k < 4; ++k) {
+    const double zc = -d20 - 0.5 + 0.25 * (k + 0.5), s0 = 0.0126 * -zc;
+    const double s1 = s0 + 6, s2 = s0 + 3, s3 = s0 + 8, s4 = s0 + 5;
+    std::vector<double> e(5, 0.0);
+    e[1] = virgin(s0, s1);
+    if (rule == "sigma-max") {
+      e[2] = e[1] + cM(s1) / cR * (s2 - s1);
+      e[3] = e[2] + cM(s1) / cR * (s1 - s2) + virgin(s1, s3);
+      e[4] = e[3] + cM(s3) / cR * (s4 - s3);
+    } else if (rule == "sigma-inversion") {
+      e[2] = e[1] + cM(s1) / cR * (s2 - s1);
+      e[3] = e[2] + cM(s2) / cR * (s1 - s2) + virgin(s1, s3);
+      e[4] = e[3] + cM(s3) / cR * (s4 - s3);
+    } else {
+      e[2] = e[1] + virgin(s1, s2) / cR;
+      e[3] = e[2] + virgin(s2, s1) / cR + virgin(s1, s3);
+      e[4] = e[3] + virgin(s3, s4) / cR;
+    }
+    for (int t = 0; t < 5; ++t) total[t] += 0.25 * e[t];
+  }
+  return total;
+}
+
+struct Dir {
+  fs::path path;
+  explicit Dir(const std::string& tag) : path(test::temp_dir(tag)) {}
+  ~Dir() { fs::remove_all(path); }
+  std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+std::string column_args(const Dir& d, const std::string& case_file = "case.toml") {
+  return d / "mesh.msh" + " --case " + d / case_file + " --pressure " + d / "flow.h5";
+}
+
+// Writes a variant of the V1 case file with `from` replaced by `to`.
+void variant(const Dir& d, const std::string& from, const std::string& to, const std::string& out) {
+  std::string text = test::slurp(d / "case.toml");
+  const auto p = text.find(from);
+  ASSERT_NE(p, std::string::npos) << from;
+  text.replace(p, from.size(), to);
+  test::spit(d / out, text);
+}
+
+}  // namespace
+
+class SolveV1 : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SolveV1, OedometerPathThroughTheTool) {
+  const std::string rule = GetParam();
+  Dir d("solve-v1");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string() + " --rule " + rule).exit_code, 0);
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / "out.h5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ref = v1_shortening(rule, 3.0);
+  FieldSeriesReader top(d / "out_top.h5");
+  ASSERT_EQ(top.steps().size(), 5u);
+  EXPECT_EQ(top.steps()[1].date, "2001-01-01");
+  for (std::size_t s = 1; s < 5; ++s) {
+    const Field u = top.node_field(s, "u_mm");
+    double uz = 0;
+    for (std::size_t i = 0; i < u.count(); ++i) uz += u.values[3 * i + 2];
+    uz = uz / u.count() * 1e-3;
+    EXPECT_NEAR(-uz / ref[s], 1.0, 0.005) << rule << " date " << s;
+  }
+  // The state and c_M in use: unloading from 28 MPa (last date) runs at c_M / c_R of the rule.
+  FieldSeriesReader res(d / "out.h5");
+  ASSERT_EQ(res.steps().size(), 5u);
+  const Field st2 = res.cell_field(2, "state"), st3 = res.cell_field(3, "state"), st4 = res.cell_field(4, "state");
+  for (double v : st2.values) EXPECT_EQ(v, 2.0);  // unloading
+  for (double v : st3.values) EXPECT_EQ(v, 1.0);  // virgin again past sigma_max
+  for (double v : st4.values) EXPECT_EQ(v, 2.0);
+  const Field cm = res.cell_field(4, "cM"), smax = res.cell_field(4, "sigma_z_max");
+  for (std::size_t c = 0; c < cm.values.size(); ++c) {
+    const double s_max = smax.values[c] * 1e-6;
+    EXPECT_NEAR(s_max, 28.0, 0.02);
+    if (rule != "stress-dependent") {
+      EXPECT_NEAR(cm.values[c] / (cM(s_max) / 3.0 * 1e-6), 1.0, 1e-9);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Rules, SolveV1, ::testing::Values("sigma-max", "sigma-inversion", "stress-dependent"),
+                         [](const auto& info) {
+                           std::string s = info.param;
+                           for (auto& c : s)
+                             if (c == '-') c = '_';
+                           return s;
+                         });
+
+TEST(SolveTool, TopSurfaceCsvAndDirectSolversAgree) {
+  Dir d("solve-csv");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  auto r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / "gamg.h5" + " --top-csv " + d / "top.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string csv = test::slurp(d / "top.csv");
+  EXPECT_NE(csv.find("date,node,x_m,y_m,ux_mm,uy_mm,uz_mm"), std::string::npos);
+  std::size_t rows = 0;
+  for (std::size_t p = csv.find("\n2"); p != std::string::npos; p = csv.find("\n2", p + 1)) ++rows;
+  EXPECT_EQ(rows, 4u * 5u);  // 4 top nodes, 5 dates
+  const auto u0 = test::last_field(d / "gamg.h5", "u", false);
+  for (const char* s : {"mumps", "cholmod"}) {
+    r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / (std::string(s) + ".h5") + " --solver " + s);
+    ASSERT_EQ(r.exit_code, 0) << s << ": " << r.err;
+    EXPECT_LT(test::max_rel_diff(u0, test::last_field(d / (std::string(s) + ".h5"), "u", false)), 1e-6) << s;
+  }
+}
+
+TEST(SolveTool, PetscOptionsPassThrough) {
+  Dir d("solve-petsc");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / "out.h5" +
+                           " -- -ksp_type gmres -ksp_gmres_restart 50 -log_view");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Performance Summary"), std::string::npos);
+  EXPECT_NE(r.out.find("UgsResidual"), std::string::npos);
+}
+
+TEST(SolveTool, SameResultOnOneAndTwoProcesses) {
+  Dir d("solve-mpi");
+  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string()).exit_code, 0);
+  const std::string args = d / "mesh.msh" + " --pressure " + d / "flow_pool_a.h5" + " --pressure " + d / "flow_pool_c.h5";
+  // Direct solver, default tolerance; and the default CG + GAMG driven to 1e-12.
+  std::string text = test::slurp(d / "case.toml");
+  text.replace(text.find("[output]"), 8, "[solver]\ntolerance = 1e-12\n\n[output]");
+  test::spit(d / "tight.toml", text);
+  for (const auto& [opts, tag] : std::vector<std::pair<std::string, std::string>>{
+           {" --case " + d / "case.toml" + " --solver mumps", "mumps"}, {" --case " + d / "tight.toml", "gamg"}}) {
+    auto r1 = test::run(test::solve_cmd() + " " + args + opts + " -o " + d / (tag + "1.h5"));
+    ASSERT_EQ(r1.exit_code, 0) << r1.err;
+    auto r2 = test::run(test::solve_cmd(2) + " " + args + opts + " -o " + d / (tag + "2.h5"));
+    ASSERT_EQ(r2.exit_code, 0) << r2.err;
+    const auto u1 = test::last_field(d / (tag + "1.h5"), "u", false), u2 = test::last_field(d / (tag + "2.h5"), "u", false);
+    const auto s1 = test::last_field(d / (tag + "1.h5"), "stress", true), s2 = test::last_field(d / (tag + "2.h5"), "stress", true);
+    EXPECT_GT(test::max_abs(u1), 1e-4);  // millimetres of compaction: a real solution
+    EXPECT_LT(test::max_rel_diff(u1, u2), 1e-10) << tag;
+    EXPECT_LT(test::max_rel_diff(s1, s2), 1e-10) << tag;
+  }
+}
+
+TEST(SolveTool, RestartReproducesAnUninterruptedRun) {
+  Dir d("solve-restart");
+  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string()).exit_code, 0);
+  const std::string args = d / "mesh.msh" + " --case " + d / "case.toml" + " --pressure " + d / "flow_pool_a.h5" +
+                           " --pressure " + d / "flow_pool_c.h5";
+  for (const std::string solver : {"mumps", "cg-gamg"}) {
+    const std::string s = " --solver " + solver;
+    auto r = test::run(test::solve_cmd() + " " + args + s + " -o " + d / "full.h5");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = test::run(test::solve_cmd() + " " + args + s + " -o " + d / "first.h5" + " --until 1960-04-01");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = test::run(test::solve_cmd(2) + " " + args + s + " -o " + d / "second.h5" + " --restart " + d / "first_state.h5");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    FieldSeriesReader first(d / "first.h5"), second(d / "second.h5"), full(d / "full.h5");
+    EXPECT_EQ(first.steps().size(), 1u);   // 1960-03-01
+    EXPECT_EQ(second.steps().size(), 1u);  // 1960-09-01
+    EXPECT_EQ(second.steps()[0].date, full.steps().back().date);
+    const double tol = solver == "mumps" ? 1e-10 : 1e-6;
+    EXPECT_LT(test::max_rel_diff(test::last_field(d / "full.h5", "u", false), test::last_field(d / "second.h5", "u", false)), tol)
+        << solver;
+    EXPECT_LT(test::max_rel_diff(test::last_field(d / "full.h5", "stress", true),
+                                 test::last_field(d / "second.h5", "stress", true)), tol)
+        << solver;
+    // The top surface of the two pieces covers every date once.
+    FieldSeriesReader t1(d / "first_top.h5"), t2(d / "second_top.h5"), tf(d / "full_top.h5");
+    EXPECT_EQ(t1.steps().size() + t2.steps().size(), tf.steps().size());
+  }
+}
+
+TEST(SolveTool, FailingStepExitsOneAndSavesTheLastGoodState) {
+  Dir d("solve-fail");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  variant(d, "[solver]\n", "[solver]\nmax_newton_iterations = 1\nmax_substeps = 1\n", "fail.toml");
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d, "fail.toml") + " -o " + d / "out.h5");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("ugs-solve: error: step 2/5 (2001-01-01): Newton did not converge in 1 iterations"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("relative residuals 1.00e+00, "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("last good state (2000-01-01) saved"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(d / "out.h5"));
+  ASSERT_TRUE(fs::exists(d / "out_state.h5"));
+  FieldSeriesReader st(d / "out_state.h5");
+  EXPECT_EQ(st.steps()[0].date, "2000-01-01");
+}
+
+struct BadCase {
+  std::string name, from, to, expect;
+};
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class SolveBadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SolveBadInput, ExitsTwoWithOneLine) {
+  const BadCase& c = GetParam();
+  Dir d("solve-bad");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  variant(d, c.from, c.to, "bad.toml");
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d, "bad.toml") + " -o " + d / "out.h5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(d / "out.h5"));
+  EXPECT_FALSE(fs::exists(d / "out_top.h5"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SolveBadInput,
+    ::testing::Values(BadCase{"missing_cR", "c_R = 3.0\n", "", "c_R': is required for law = \"hypoplastic\""},
+                      BadCase{"nu_too_large", "nu_z = 0.3", "nu_z = 0.5", "outside (-1, 0.5)"},
+                      BadCase{"nu_too_small", "nu_z = 0.3", "nu_z = -1.2", "outside (-1, 0.5)"},
+                      BadCase{"Eh_over_Ez_zero", "Eh_over_Ez = 3.0", "Eh_over_Ez = 0", "Eh_over_Ez': must be positive, got 0"},
+                      BadCase{"Eh_over_Ez_negative", "Eh_over_Ez = 3.0", "Eh_over_Ez = -1", "must be positive"},
+                      BadCase{"negative_cR", "c_R = 3.0", "c_R = -3.0", "c_R': must be positive, got -3"},
+                      BadCase{"not_positive_definite", "nuh_over_nuz = 0.2", "nuh_over_nuz = 2.5", "not positive definite"},
+                      BadCase{"unknown_boundary", "fixed = [\"bottom\"]", "fixed = [\"bottom\", \"upper\"]",
+                              "unknown boundary 'upper'"},
+                      BadCase{"boundary_twice", "free = [\"top\"]", "free = [\"bottom\"]", "boundary 'bottom' is also in fixed"},
+                      BadCase{"unknown_material", "name = \"rock\"", "name = \"granite\"", "mesh material 'rock'"},
+                      BadCase{"unknown_key", "c_R = 3.0", "c_R = 3.0\ncr = 2", "cr': unknown key"},
+                      BadCase{"bad_rule", "inversion_rule = \"sigma-max\"", "inversion_rule = \"max\"", "inversion_rule"}),
+    [](const auto& info) { return info.param.name; });
+
+TEST(SolveTool, PressureFromAnotherMeshIsBadInput) {
+  Dir d("solve-badp");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  ASSERT_EQ(test::run(test::make_case() + " small " + (d.path / "other").string()).exit_code, 0);
+  const auto r = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "case.toml" + " --pressure " +
+                           d / "other/flow_pool_c.h5" + " -o " + d / "out.h5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("is not in the mesh"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(d / "out.h5"));
+  // Under mpirun the same one line, from rank 0 only.
+  const auto r2 = test::run(test::solve_cmd(2) + " " + d / "mesh.msh" + " --case " + d / "case.toml" + " --pressure " +
+                            d / "other/flow_pool_c.h5" + " -o " + d / "out.h5");
+  EXPECT_NE(r2.exit_code, 0);
+  EXPECT_EQ(r2.err.rfind("ugs-solve: error: ", 0), 0u) << r2.err;
+}
+
+TEST(SolveTool, HelpAndUsage) {
+  auto r = test::run(test::solve_cmd() + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("Example:"), std::string::npos);
+  EXPECT_NE(r.out.find("--pressure"), std::string::npos);
+  r = test::run(test::solve_cmd() + " mesh.msh --pressure p.h5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--case"), std::string::npos);
+  r = test::run(test::solve_cmd() + " mesh.msh --case c.toml --pressure p.h5 --solver lu");
+  EXPECT_EQ(r.exit_code, 2);
+}

@@ -1,0 +1,354 @@
+// ugs-calibrate — calibration of model parameters against InSAR series (thesis 4.2.2): finds the
+// values of case-file parameters (e.g. c_R of Pool C and its aquifer, c_R of Pool A, aquifer
+// conductivity) that minimise the RMS difference between simulated and measured vertical (and
+// optionally east-west) displacement at chosen PS points over a date window, each series' offset
+// removed. Every evaluation writes a modified copy of the case, runs the solver command as a
+// subprocess and samples its result in-process; evaluations are cached by parameter value and run
+// concurrently (-j). A scan of the bounds gives the misfit profile, then Brent's method (one
+// parameter) or NLopt's BOBYQA (several) refines the best value.
+// Outputs (-o FOLDER): best.toml (the calibrated case), parameters.csv, misfit_points.csv,
+// profile.csv (every evaluation) and best_samples.csv (the best run at the PS dates, as ugs-sample).
+//
+//   ugs-calibrate --case case.toml --mesh model.msh --param material.pool_c.c_R,material.aquifer_pool_c.c_R=2:6
+//     --measured insar_vertical.csv --inside reservoir_traces.geojson --window 2003-01-01/2021-12-31
+//     --solver-command "ugs-solve {mesh} --case {case} --pressure dp_a.h5 --pressure dp_c.h5 --top {out} -o {dir}/solve.h5"
+//     -j 2 -o calibration
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "ugs/cli/tool.hpp"
+#include "ugs/formats/case_file.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/insar/case_params.hpp"
+#include "ugs/insar/crs.hpp"
+#include "ugs/insar/evaluator.hpp"
+#include "ugs/insar/inputs.hpp"
+#include "ugs/insar/optimizer.hpp"
+#include "ugs/insar/output_folder.hpp"
+#include "ugs/insar/ps_data.hpp"
+#include "ugs/insar/sampling.hpp"
+#include "ugs/meshing/geodata.hpp"
+
+namespace {
+
+using namespace ugs;
+using namespace ugs::insar;
+namespace fs = std::filesystem;
+
+struct Options {
+  std::string case_file, mesh, top_group = "bnd:top", solver_command;
+  std::vector<std::string> params;
+  std::string measured, measured_east, points_crs, crs, id_column;
+  double east_weight = 1.0;
+  std::vector<std::string> points;
+  std::string inside, inside_where;
+  std::string window;
+  std::string field;
+  std::string cache_dir;
+  int jobs = 1;
+  bool keep_results = false;
+  int scan = -1;
+  double xtol = 0.005;
+  int max_evals = 60;
+};
+
+MisfitWindow parse_window(const std::string& text) {
+  MisfitWindow w;
+  if (text.empty()) return w;
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) throw InputError("--window", fmt::format("'{}' is not START/END (ISO dates)", text));
+  const std::string a = text.substr(0, slash), b = text.substr(slash + 1);
+  if (!a.empty()) {
+    const auto t = parse_iso_date(a);
+    if (!t) throw InputError("--window", fmt::format("'{}' is not an ISO 8601 date", a));
+    w.start = *t;
+  }
+  if (!b.empty()) {
+    const auto t = parse_iso_date(b);
+    if (!t) throw InputError("--window", fmt::format("'{}' is not an ISO 8601 date", b));
+    w.end = *t;
+  }
+  if (w.start > w.end) throw InputError("--window", fmt::format("'{}': start after end", text));
+  return w;
+}
+
+std::string fmt_value(double v) { return fmt::format("{:.6g}", v); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cli::Tool tool({"ugs-calibrate", "Calibrate case-file parameters against InSAR series (cached, concurrent solver runs).",
+                  "ugs-calibrate --case case.toml --mesh model.msh --param material.pool_c.c_R=2:6 --measured "
+                  "insar_vertical.csv --inside reservoir_traces.geojson --window 2003-01-01/2021-12-31 --solver-command "
+                  "\"ugs-solve {mesh} --case {case} --pressure dp.h5 --top {out} -o {dir}/solve.h5\" -j 2 -o calibration"});
+  Options o;
+  auto& app = tool.app();
+  app.add_option("--case", o.case_file, "Case file (TOML) whose parameters are calibrated")->required();
+  app.add_option("--param", o.params,
+                 "PATH[,PATH...]=LOWER:UPPER[:log], a number in the case, e.g. material.pool_c.c_R=2:6 (repeat for more)")
+      ->required();
+  app.add_option("--solver-command", o.solver_command,
+                 "Command run for each evaluation ({case}, {out}, {mesh}, {dir} are replaced; it must write {out})")
+      ->required();
+  app.add_option("--mesh", o.mesh, "Mesh ({mesh}, and its top surface for sampling; default: the results' own cells)");
+  app.add_option("--top-group", o.top_group, "Surface group of the top in the mesh")->capture_default_str();
+  app.add_option("--measured", o.measured, "Measured vertical series: EGMS CSV (or CSV with YYYYMMDD columns), mm")->required();
+  app.add_option("--measured-east", o.measured_east, "Measured east-west series, added to the misfit with --east-weight");
+  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")->capture_default_str();
+  app.add_option("--points", o.points, "PS ids used in the misfit (comma-separated; default: all)")->delimiter(',');
+  app.add_option("--inside", o.inside, "Use only the PS inside these polygons (any OGR file, e.g. the reservoir trace)");
+  app.add_option("--inside-where", o.inside_where, "OGR attribute filter on the --inside polygons, e.g. \"name = 'Pool C'\"");
+  app.add_option("--window", o.window, "Dates compared, START/END (ISO; either may be empty)");
+  app.add_option("--points-crs", o.points_crs, "CRS of the PS coordinates (default: EPSG:3035 for EGMS)");
+  app.add_option("--crs", o.crs, "Model CRS (default: the case file's crs)");
+  app.add_option("--id-column", o.id_column, "Column holding the PS id (default: pid)");
+  app.add_option("--field", o.field, "Displacement node field in the results (default: u, or u_mm)");
+  app.add_option("--cache-dir", o.cache_dir, "Cache of evaluations (default: <output>.cache)");
+  app.add_option("-j,--jobs", o.jobs, "Evaluations run at once")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_flag("--keep-results", o.keep_results, "Keep each evaluation's results file in the cache");
+  app.add_option("--scan", o.scan, "Grid values per parameter before refining (default 5 for one parameter, 3 for more; 0: none)");
+  app.add_option("--xtol", o.xtol, "Stop when steps are below this fraction of each range")->capture_default_str();
+  app.add_option("--max-evals", o.max_evals, "Evaluation budget (scan included)")->capture_default_str()->check(CLI::Range(1, 100000));
+  std::string& output = tool.add_output("calibration", "Output folder");
+  return tool.run(argc, argv, [&] {
+    // 1. Parameters: every path must exist in the case, and both bounds must give a valid case.
+    check_command_template(o.solver_command, !o.mesh.empty());
+    const CaseTemplate tmpl(o.case_file);
+    std::vector<ParameterSpec> params;
+    std::set<std::string> seen;
+    for (const auto& text : o.params) {
+      ParameterSpec p = parse_parameter(text);
+      for (const auto& path : p.paths) {
+        (void)tmpl.value(path);
+        if (!seen.insert(path).second) throw InputError("--param " + text, fmt::format("'{}' is calibrated twice", path));
+      }
+      params.push_back(std::move(p));
+    }
+    const std::string cache_dir = o.cache_dir.empty() ? output + ".cache" : o.cache_dir;
+    fs::create_directories(cache_dir);
+    for (const auto& p : params) {
+      const double now = tmpl.value(p.paths.front());
+      if (now < p.lower || now > p.upper)
+        cli::warning("{} = {} in the case lies outside the bounds {}:{}", p.paths.front(), now, p.lower, p.upper);
+      for (double bound : {p.lower, p.upper}) {
+        std::vector<std::pair<std::string, double>> v;
+        for (const auto& path : p.paths) v.emplace_back(path, bound);
+        const std::string check = (fs::path(cache_dir) / fmt::format(".check-{}.toml", ::getpid())).string();
+        {
+          std::ofstream f(check);
+          f << tmpl.render(v);
+        }
+        try {
+          (void)read_case_file(check);
+        } catch (const InputError& e) {
+          fs::remove(check);
+          std::string msg = e.what();
+          if (msg.rfind(check, 0) == 0) msg = o.case_file + msg.substr(check.size());
+          throw InputError("--param " + p.name, fmt::format("the case is not valid at {} = {}: {}", p.name, bound, msg));
+        }
+        fs::remove(check);
+      }
+    }
+    const MisfitWindow window = parse_window(o.window);
+
+    // 2. Measured series at the chosen points, in the model CRS.
+    PsReadOptions ro;
+    ro.model_crs = model_crs(o.crs, o.case_file);
+    ro.points_crs = o.points_crs;
+    ro.id_column = o.id_column;
+    ro.require_series = true;
+    PsData up = read_ps(o.measured, ro);
+    if (ro.model_crs.empty() && !up.source_crs.empty())
+      throw InputError(o.measured, fmt::format("points are in {}, but the model CRS is unknown: give --crs or a case with crs",
+                                               crs_name(up.source_crs)));
+    std::vector<std::string> ids = o.points;
+    if (ids.empty())
+      for (const auto& p : up.points) ids.push_back(p.id);
+    if (!o.inside.empty()) {
+      const auto vec = geo::read_vector(o.inside, ro.model_crs, o.inside_where);
+      std::vector<geo::Polygon> polys;
+      for (const auto& f : vec.features) polys.insert(polys.end(), f.polygons.begin(), f.polygons.end());
+      if (polys.empty()) throw InputError(o.inside, "has no polygon (check --inside-where)");
+      const geo::PolygonSet set(polys);
+      std::vector<std::string> kept;
+      for (const auto& id : ids) {
+        const auto i = up.find(id);
+        if (i && set.contains({up.points[*i].x, up.points[*i].y})) kept.push_back(id);
+      }
+      if (kept.empty()) throw InputError(o.inside, "none of the chosen PS points lies inside these polygons");
+      ids = kept;
+    }
+    up = select_points(up, ids);
+    std::optional<PsData> east;
+    if (!o.measured_east.empty()) {
+      PsData e = read_ps(o.measured_east, ro);
+      std::vector<std::string> have;
+      for (const auto& id : ids)
+        if (e.find(id)) have.push_back(id);
+      if (have.empty()) throw InputError(o.measured_east, "has none of the chosen PS points");
+      east = select_points(e, have);
+    }
+    {
+      std::string list;
+      for (const auto& id : ids) list += (list.empty() ? "" : ", ") + id;
+      cli::info("{} PS points in the misfit: {}", ids.size(), list);
+    }
+
+    // 3. Where they sit on the top surface (from the mesh once, or from each results file).
+    std::optional<TopSurface> mesh_top;
+    std::unique_ptr<SurfaceLocator> mesh_locator;
+    std::vector<LocatedPoint> located;
+    std::vector<PsPoint> all_points = up.points;
+    if (east)
+      for (const auto& p : east->points)
+        if (!up.find(p.id)) all_points.push_back(p);
+    if (!o.mesh.empty()) {
+      mesh_top = load_top_surface(o.mesh, o.top_group, "");
+      mesh_locator = std::make_unique<SurfaceLocator>(*mesh_top);
+      const Located l = locate_points(*mesh_locator, all_points, false);
+      for (const auto& p : l.outside)
+        cli::warning("PS '{}' lies {:.0f} m outside the top surface: left out of the misfit", p.point.id, p.hit.distance);
+      if (l.sampled.empty()) throw InputError(o.measured, "no chosen PS point lies on the model's top surface (wrong CRS?)");
+      located = l.sampled;
+    }
+    std::vector<std::string> needed;
+    for (const auto& p : all_points) needed.push_back(p.id);
+
+    EvaluatorSetup setup;
+    setup.case_template = &tmpl;
+    setup.params = params;
+    setup.solver_command = o.solver_command;
+    setup.mesh_path = o.mesh;
+    setup.cache_dir = cache_dir;
+    setup.jobs = o.jobs;
+    setup.keep_results = o.keep_results;
+    setup.setup_extra = "field=" + o.field + " top=" + o.top_group;
+    setup.needed_ids = needed;
+    setup.sample = [&](const std::string& h5) {
+      std::vector<LocatedPoint> pts = located;
+      std::optional<TopSurface> own;
+      if (!mesh_top) {
+        own = load_top_surface("", "", h5);
+        const SurfaceLocator loc(*own);
+        pts = locate_points(loc, all_points, false).sampled;
+      }
+      SurfaceDisplacement res(h5, mesh_top ? *mesh_top : *own, o.field);
+      const Samples s = sample_displacement(res, pts, {}, std::nullopt);
+      SimulatedSeries out;
+      out.times = s.dates;
+      for (const auto& p : s.points) out.ids.push_back(p.point.id);
+      out.enu = s.enu;
+      // Points off the surface have no series: absent ids are left out of the misfit.
+      return out;
+    };
+    auto located_for = [&](const SimulatedSeries& s, const PsData& d) {
+      std::vector<LocatedPoint> pts;
+      for (const auto& p : d.points)
+        if (s.has(p.id)) pts.push_back({p, {}});
+      return pts;
+    };
+    setup.misfit = [&](const SimulatedSeries& s) {
+      const Samples su = s.at_dates(located_for(s, up), up.dates);
+      auto mu = series_misfits(up, su, 2, window);
+      std::vector<SeriesMisfit> me;
+      if (east) me = series_misfits(*east, s.at_dates(located_for(s, *east), east->dates), 0, window);
+      return combine_misfits(std::move(mu), std::move(me), east ? o.east_weight : 0.0);
+    };
+    Evaluator ev(std::move(setup));
+    ev.on_evaluation = [&](const Evaluation& e) {
+      std::string xs;
+      for (std::size_t i = 0; i < e.x.size(); ++i) xs += (i ? ", " : "") + params[i].name + " = " + fmt_value(e.x[i]);
+      cli::info("evaluation {} ({}): {} -> RMS {:.3f} mm{}", e.index, e.phase, xs, e.misfit.rms_mm,
+                e.cached ? " (cached)" : fmt::format(" ({:.1f} s)", e.seconds));
+    };
+
+    // 4. Optimise.
+    OptimizerOptions oo;
+    oo.scan = o.scan;
+    oo.xtol = o.xtol;
+    oo.max_evals = o.max_evals;
+    const OptimizerResult best = optimize(ev, params, oo);
+    if (!best.converged) cli::warning("the optimizer stopped before converging: {}", best.stop_reason);
+    const Evaluation& be = ev.history()[best.best_index];
+
+    // 5. Outputs, all at once.
+    OutputFolder out(output);
+    {
+      std::vector<std::pair<std::string, double>> v;
+      for (std::size_t i = 0; i < params.size(); ++i)
+        for (const auto& p : params[i].paths) v.emplace_back(p, best.best_x[i]);
+      OutputFile f(out.file("best.toml"));
+      f.write(fmt::format("# Calibrated by ugs-calibrate (RMS misfit {:.3f} mm; {}); from {}\n", best.best_rms_mm, best.method,
+                          o.case_file));
+      f.write(tmpl.render(v));
+      f.commit();
+    }
+    {
+      CsvWriter w(out.file("parameters.csv"), {"parameter", "paths", "best", "lower", "upper", "case_value", "scale"},
+                  std::vector<std::string>{tool.command_line(),
+                                           fmt::format("{}; {}; RMS {:.4f} mm at evaluation {} of {}", best.method,
+                                                       best.stop_reason, best.best_rms_mm, be.index, ev.history().size())});
+      for (std::size_t i = 0; i < params.size(); ++i) {
+        std::string paths;
+        for (const auto& p : params[i].paths) paths += (paths.empty() ? "" : ";") + p;
+        w.text(params[i].name).text(paths).number(best.best_x[i]).number(params[i].lower).number(params[i].upper);
+        w.number(tmpl.value(params[i].paths.front())).text(params[i].log_scale ? "log" : "linear").end_row();
+      }
+      w.commit();
+    }
+    {
+      CsvWriter w(out.file("misfit_points.csv"), {"pid", "component", "n", "offset_mm", "rms_mm"},
+                  std::vector<std::string>{"misfit of the best evaluation per point: offset = mean(simulated - measured), "
+                                           "removed before the RMS"});
+      for (const auto& s : be.misfit.series) w.text(s.id).text(s.component).integer(static_cast<std::int64_t>(s.n)).number(s.offset_mm, 4).number(s.rms_mm, 4).end_row();
+      w.text("all").text(east ? "up+east" : "up").integer(static_cast<std::int64_t>(be.misfit.n)).text("").number(be.misfit.rms_mm, 4).end_row();
+      w.commit();
+    }
+    {
+      std::vector<std::string> cols{"evaluation", "phase"};
+      for (const auto& p : params) cols.push_back(p.name);
+      for (const std::string c : {"rms_mm", "cached", "entry"}) cols.push_back(c);  // timings: cache index.csv
+      CsvWriter w(out.file("profile.csv"), cols);
+      for (const auto& e : ev.history()) {
+        w.integer(static_cast<std::int64_t>(e.index)).text(e.phase);
+        for (double v : e.x) w.number(v);
+        w.number(e.misfit.rms_mm, 6).integer(e.cached ? 1 : 0).text(e.entry).end_row();
+      }
+      w.commit();
+    }
+    {
+      // The best run at the measured dates, relative to the first one (as ugs-sample --at-ps-dates).
+      const SimulatedSeries& s = ev.series_of(be);
+      std::vector<LocatedPoint> pts;
+      for (const auto& p : all_points)
+        if (s.has(p.id)) {
+          LocatedPoint lp{p, {}};
+          for (const auto& l : located)
+            if (l.point.id == p.id) lp = l;
+          if (located.empty()) lp.hit = {true, 0, {}, {p.x, p.y, 0}, 0};
+          pts.push_back(lp);
+        }
+      Samples sm = s.at_dates(pts, up.dates);
+      const std::int64_t ref = up.dates.front();
+      const Samples r0 = s.at_dates(pts, {ref});
+      for (std::size_t p = 0; p < pts.size(); ++p)
+        for (std::size_t d = 0; d < sm.dates.size(); ++d)
+          for (int j = 0; j < 3; ++j) sm.enu[(p * sm.dates.size() + d) * 3 + j] -= r0.at(p, 0)[j];
+      sm.reference = ref;
+      write_samples_csv(out.file("best_samples.csv"), sm, {},
+                        {tool.command_line(), "best evaluation " + be.entry + ", relative to " + format_iso_date(ref)});
+    }
+    out.commit();
+
+    // 6. The answer, on stdout.
+    std::printf("best (%s, %s):\n", best.method.c_str(), best.stop_reason.c_str());
+    for (std::size_t i = 0; i < params.size(); ++i)
+      std::printf("  %s = %s   [%g, %g]\n", params[i].name.c_str(), fmt_value(best.best_x[i]).c_str(), params[i].lower,
+                  params[i].upper);
+    std::printf("RMS misfit %.3f mm over %zu values; %zu evaluations (%zu from the cache); outputs in %s\n", best.best_rms_mm,
+                be.misfit.n, ev.history().size(),
+                static_cast<std::size_t>(std::count_if(ev.history().begin(), ev.history().end(), [](const Evaluation& e) { return e.cached; })),
+                out.target().string().c_str());
+  });
+}

@@ -1,0 +1,56 @@
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "report.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
+#include "ugs/insar/displacement.hpp"
+
+namespace ugs::report {
+
+std::string Phase::label() const { return fmt::format("{} {} to {}", name, format_iso_date(start), format_iso_date(end)); }
+
+std::string jstr(const std::string& s) {
+  std::string q = "\"";
+  for (unsigned char ch : s) {
+    switch (ch) {
+      case '"': q += "\\\""; break;
+      case '\\': q += "\\\\"; break;
+      case '\n': q += "\\n"; break;
+      case '\t': q += "\\t"; break;
+      default:
+        if (ch < 0x20)
+          q += fmt::format("\\u{:04x}", ch);
+        else
+          q += static_cast<char>(ch);
+    }
+  }
+  return q + "\"";
+}
+
+std::string jwork(const std::string& name) { return jstr("work/" + name); }
+
+std::string slug(const std::string& s) {
+  std::string r;
+  for (char ch : s) r += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '_';
+  return r;
+}
+
+std::string mm(double v) { return std::isfinite(v) ? fmt::format("{:.2f}", v) : "n/a"; }
+
+std::vector<double> cell_field_at(const FieldSeriesReader& r, const std::vector<std::int64_t>& times, const std::string& name,
+                                  std::int64_t t, int& components) {
+  const auto b = insar::bracket_time(times, t);
+  if (!b)
+    throw InputError(r.path(), fmt::format("date {} lies outside the results ({} .. {})", format_iso_date(t),
+                                           format_iso_date(times.front()), format_iso_date(times.back())));
+  Field a = r.cell_field(b->i0, name);
+  components = a.components;
+  if (b->w == 0) return std::move(a.values);
+  const Field c = r.cell_field(b->i1, name);
+  for (std::size_t i = 0; i < a.values.size(); ++i) a.values[i] = (1 - b->w) * a.values[i] + b->w * c.values[i];
+  return std::move(a.values);
+}
+
+}  // namespace ugs::report

@@ -1,0 +1,285 @@
+#!/usr/bin/python3
+"""Figures of ugs-report, drawn with matplotlib.
+
+ugs-report writes every figure's data into work/ (CSV and .npy files, never pickles) and a list of
+figures, work/manifest.json; this script draws each one into a PNG of the requested size in the
+current folder. Run by ugs-report as `/usr/bin/python3 plots.py work/manifest.json`; it can be
+re-run by hand on a report made with --keep-work.
+
+Kinds: map (node values on the top surface, reservoir trace, PS points), pooltop (cell values on
+the top of a pool's layer), section (polygons of a vertical section, vertical exaggeration),
+series (simulated vs measured at a PS point, pool pressures), faults (chi on each fault in its
+plane), profile (calibration misfit of every evaluation).
+"""
+import csv
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.dates as mdates  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
+
+CMAP_SIGNED = "RdBu_r"
+
+
+def load(path):
+    return np.load(path, allow_pickle=False)
+
+
+def read_csv(path):
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    return rows[0], rows[1:]
+
+
+def dates(values):
+    return np.array([np.datetime64(v[:19]) for v in values], dtype="datetime64[s]")
+
+
+def symmetric_limit(values):
+    finite = np.abs(values[np.isfinite(values)])
+    vmax = float(finite.max()) if finite.size else 1.0
+    return vmax if vmax > 0 else 1.0
+
+
+def draw_trace(ax, path, scale=1e-3):
+    if not path:
+        return
+    _, rows = read_csv(path)
+    parts = {}
+    for part, x, y in rows:
+        parts.setdefault(part, []).append((float(x) * scale, float(y) * scale))
+    for i, pts in enumerate(parts.values()):
+        a = np.array(pts)
+        ax.plot(a[:, 0], a[:, 1], color="black", lw=1.2, label="reservoir trace" if i == 0 else None)
+
+
+def draw_points(ax, path, extent):
+    if not path:
+        return
+    _, rows = read_csv(path)
+    for pid, x, y in rows:
+        x, y = float(x), float(y)
+        if extent[0] <= x <= extent[1] and extent[2] <= y <= extent[3]:
+            ax.plot(x * 1e-3, y * 1e-3, marker="^", color="black", ms=5, mfc="white")
+            ax.annotate(pid, (x * 1e-3, y * 1e-3), xytext=(4, 4), textcoords="offset points", fontsize=7)
+
+
+def new_figure(m, fig, layout=None):
+    f = plt.figure(figsize=(m["width"] / m["dpi"], m["height"] / m["dpi"]), dpi=m["dpi"], layout=layout)
+    f.suptitle(fig["title"], fontsize=11)
+    return f
+
+
+def plot_map(m, fig, cells=False):
+    f = new_figure(m, fig)
+    ax = f.add_subplot(1, 1, 1)
+    xy = load(fig["nodes"]) * 1e-3
+    tri = Triangulation(xy[:, 0], xy[:, 1], load(fig["triangles"]))
+    v = load(fig["values"])
+    vmax = None
+    if cells:
+        mask = ~np.isfinite(v)
+        tri.set_mask(mask)
+        vals = np.where(mask, 0.0, v)
+        vmax = symmetric_limit(v)
+        pc = ax.tripcolor(tri, facecolors=vals, cmap=CMAP_SIGNED, vmin=-vmax, vmax=vmax)
+        x0, x1 = xy[:, 0].min(), xy[:, 0].max()
+        y0, y1 = xy[:, 1].min(), xy[:, 1].max()
+        extent = [x0 * 1e3, x1 * 1e3, y0 * 1e3, y1 * 1e3]
+    else:
+        extent = fig["extent"]
+        inside = (xy[:, 0] >= extent[0] * 1e-3) & (xy[:, 0] <= extent[1] * 1e-3)
+        inside &= (xy[:, 1] >= extent[2] * 1e-3) & (xy[:, 1] <= extent[3] * 1e-3)
+        vmax = symmetric_limit(v[inside] if inside.any() else v)
+        pc = ax.tripcolor(tri, v, shading="gouraud", cmap=CMAP_SIGNED, vmin=-vmax, vmax=vmax)
+        levels = np.linspace(-vmax, vmax, 11)
+        ax.tricontour(tri, v, levels=levels, colors="k", linewidths=0.3, alpha=0.5)
+    cb = f.colorbar(pc, ax=ax, shrink=0.85)
+    cb.set_label(fig["label"])
+    draw_trace(ax, fig.get("trace"))
+    draw_points(ax, fig.get("points"), extent)
+    ax.set_xlim(extent[0] * 1e-3, extent[1] * 1e-3)
+    ax.set_ylim(extent[2] * 1e-3, extent[3] * 1e-3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x, east (km)")
+    ax.set_ylabel("y, north (km)")
+    ax.ticklabel_format(useOffset=False, style="plain")
+    ax.grid(True, lw=0.3, alpha=0.5)
+    if fig.get("trace"):
+        ax.legend(loc="lower right", fontsize=8)
+    return f
+
+
+def plot_section(m, fig):
+    f = new_figure(m, fig)
+    ax = f.add_subplot(1, 1, 1)
+    sz = load(fig["sz"])
+    off = load(fig["offsets"])
+    v = load(fig["values"])
+    polys = [np.column_stack((sz[a:b, 0] * 1e-3, sz[a:b, 1])) for a, b in zip(off[:-1], off[1:])]
+    vmax = symmetric_limit(v)
+    pc = PolyCollection(polys, array=v, cmap=CMAP_SIGNED, edgecolors="face", linewidths=0.1)
+    pc.set_clim(-vmax, vmax)
+    ax.add_collection(pc)
+    ax.set_xlim(0, fig["length"] * 1e-3)
+    ax.set_ylim(sz[:, 1].min(), sz[:, 1].max())
+    # s in km, z in m: the displayed z scale is `exaggeration` times the s scale.
+    ax.set_aspect(fig["exaggeration"] * 1e-3)
+    ax.set_xlabel("distance along the section (km)")
+    ax.set_ylabel(f"elevation (m), vertical exaggeration x{fig['exaggeration']:g}")
+    for text, x, ha in ((fig.get("from"), 0.0, "left"), (fig.get("to"), fig["length"] * 1e-3, "right")):
+        if text:
+            ax.annotate(text, (x, 1.0), xycoords=("data", "axes fraction"), xytext=(0, 4), textcoords="offset points",
+                        ha=ha, fontsize=10, fontweight="bold")
+    cb = f.colorbar(pc, ax=ax, orientation="horizontal", fraction=0.06, pad=0.18)
+    cb.set_label(fig["label"])
+    return f
+
+
+def plot_series(m, fig):
+    f = new_figure(m, fig)
+    ax = f.add_subplot(1, 1, 1)
+    _, rows = read_csv(fig["sim"])
+    ts = dates([r[0] for r in rows])
+    vs = np.array([float(r[1]) for r in rows])
+    lo, hi = ts.min(), ts.max()
+    if fig.get("meas"):
+        _, mrows = read_csv(fig["meas"])
+        tm = dates([r[0] for r in mrows])
+        vm = np.array([float(r[1]) for r in mrows])
+        ax.plot(tm, vm, ".", color="0.45", ms=3, label="InSAR (measured)")
+        lo, hi = tm.min(), tm.max()
+    # Steps just outside the window are drawn too (clipped by the axes), so the line reaches its edges.
+    ax.plot(ts, vs, "-", color="tab:red", lw=1.6, marker="." if ts.size < 30 else None, label="simulated")
+    ax.set_xlim(lo, hi)
+    # The y range of what is visible (the simulation may start decades before the window).
+    visible = [vs[(ts >= lo) & (ts <= hi)]]
+    if fig.get("meas"):
+        visible.append(vm)
+    visible = np.concatenate(visible)
+    if visible.size:
+        pad = 0.08 * max(float(np.ptp(visible)), 0.5)
+        ax.set_ylim(float(visible.min()) - pad, float(visible.max()) + pad)
+    ax.set_ylabel(fig["label"])
+    ax.grid(True, lw=0.3, alpha=0.6)
+    locator = mdates.AutoDateLocator()
+    ax.xaxis.set_major_locator(locator)
+    ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
+    handles, labels = ax.get_legend_handles_labels()
+    if fig.get("pressure"):
+        ax2 = ax.twinx()
+        _, prow = read_csv(fig["pressure"])
+        pools = {}
+        for pool, d, val in prow:
+            pools.setdefault(pool, ([], []))
+            pools[pool][0].append(d)
+            pools[pool][1].append(float(val))
+        styles = ["--", ":", "-."]
+        for i, (pool, (pd, pv)) in enumerate(pools.items()):
+            ax2.plot(dates(pd), np.array(pv), styles[i % 3], color=f"C{i}", lw=1.0, label=f"{pool} pressure")
+        ax2.set_xlim(lo, hi)
+        pvis = np.concatenate([np.array(pv)[(dates(pd) >= lo) & (dates(pd) <= hi)] for pd, pv in pools.values()])
+        if pvis.size:
+            ppad = 0.08 * max(float(np.ptp(pvis)), 1e-3)
+            ax2.set_ylim(float(pvis.min()) - ppad, float(pvis.max()) + ppad)
+        ax2.set_ylabel(fig["pressure_label"])
+        h2, l2 = ax2.get_legend_handles_labels()
+        handles += h2
+        labels += l2
+    ax.legend(handles, labels, loc="upper left", fontsize=8)
+    return f
+
+
+def plot_faults(m, fig):
+    f = new_figure(m, fig, layout="constrained")
+    panels = fig["panels"]
+    n = len(panels)
+    cols = 1 if n <= 3 else 2
+    rows = (n + cols - 1) // cols
+    pc = None
+    axes = []
+    for i, p in enumerate(panels):
+        ax = f.add_subplot(rows, cols, i + 1)
+        axes.append(ax)
+        sz = load(p["sz"]).reshape(-1, 3, 2).copy()
+        sz[:, :, 0] *= 1e-3
+        v = load(p["values"])
+        pc = PolyCollection(list(sz), array=v, cmap="viridis", edgecolors="face", linewidths=0.1)
+        pc.set_clim(0.0, fig["vmax"])
+        ax.add_collection(pc)
+        ax.set_xlim(sz[:, :, 0].min(), sz[:, :, 0].max())
+        ax.set_ylim(sz[:, :, 1].min(), sz[:, :, 1].max())
+        finite = v[np.isfinite(v)]
+        ax.set_title(f"{p['name']}: max χ = {finite.max() if finite.size else float('nan'):.3f}", fontsize=9)
+        ax.set_xlabel("along strike (km)", fontsize=8)
+        ax.set_ylabel("elevation (m)", fontsize=8)
+        ax.tick_params(labelsize=7)
+    if pc is not None:
+        cb = f.colorbar(pc, ax=axes, shrink=0.9)
+        cb.set_label(fig["label"])
+    return f
+
+
+def plot_profile(m, fig):
+    f = new_figure(m, fig, layout="constrained")
+    header, rows = read_csv(fig["csv"])
+    # Each cache entry once: the first time it was evaluated.
+    seen = set()
+    unique = []
+    for r in rows:
+        if r[header.index("entry")] not in seen:
+            seen.add(r[header.index("entry")])
+            unique.append(r)
+    rows = unique
+    rms = np.array([float(r[header.index("rms_mm")]) for r in rows])
+    phase = [r[header.index("phase")] for r in rows]
+    best = int(np.argmin(rms))
+    params = fig["params"]
+    for i, name in enumerate(params):
+        ax = f.add_subplot(1, len(params), i + 1)
+        x = np.array([float(r[header.index(name)]) for r in rows])
+        for ph, marker in (("scan", "o"), ("brent", "s"), ("bobyqa", "D")):
+            k = np.array([p == ph for p in phase])
+            if k.any():
+                ax.plot(x[k], rms[k], marker, ls="none", ms=5, label=ph)
+        ax.plot(x[best], rms[best], "*", color="red", ms=14, label=f"best {x[best]:.4g}")
+        ax.set_xlabel(name)
+        ax.set_ylabel("RMS misfit (mm)")
+        ax.grid(True, lw=0.3, alpha=0.6)
+        ax.legend(fontsize=8)
+    return f
+
+
+def main():
+    with open(sys.argv[1], encoding="utf-8") as fh:
+        m = json.load(fh)
+    plt.rcParams.update({"font.size": 9, "svg.hashsalt": "ugs", "path.simplify": True})
+    for fig in m["figures"]:
+        kind = fig["kind"]
+        if kind == "map":
+            f = plot_map(m, fig)
+        elif kind == "pooltop":
+            f = plot_map(m, fig, cells=True)
+        elif kind == "section":
+            f = plot_section(m, fig)
+        elif kind == "series":
+            f = plot_series(m, fig)
+        elif kind == "faults":
+            f = plot_faults(m, fig)
+        elif kind == "profile":
+            f = plot_profile(m, fig)
+        else:
+            raise SystemExit(f"plots.py: unknown figure kind {kind!r}")
+        f.savefig(fig["png"], dpi=m["dpi"], metadata={"Software": None})
+        plt.close(f)
+        print(f"plots.py: {fig['png']}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,102 @@
+// ugs-report internals: what the figure builders share (inputs, the work folder, the figure list
+// handed to plots.py as manifest.json) and the headline numbers of the summary page.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ugs/formats/case_file.hpp"
+#include "ugs/formats/fields.hpp"
+#include "ugs/formats/mesh.hpp"
+#include "ugs/insar/displacement.hpp"
+#include "ugs/insar/ps_data.hpp"
+#include "ugs/insar/surface.hpp"
+
+namespace ugs::report {
+
+struct Phase {
+  std::string name;            // "storage"
+  std::int64_t start = 0, end = 0;
+  std::string label() const;   // "storage 2015-05-01 to 2015-11-01"
+};
+
+struct Options {
+  std::string results, top, mesh, case_file, crs;
+  std::string measured, measured_east, samples;
+  std::string trace, trace_where, sections, sections_where, faults;
+  std::vector<std::string> phases;       // NAME=START/END
+  std::string stress_pool;               // pool whose layer the stress pictures look at
+  std::string stress_field;              // cell field (default: stress_change, dstress or stress)
+  double reference_pressure_MPa = 0;     // normalisation of stress changes (default: the pool's)
+  double exaggeration = 10;
+  std::string section_zrange;            // ZMIN/ZMAX
+  std::string fault_dates;               // MIN_DATE,MAX_DATE
+  std::string fault_field = "chi";
+  std::string calibration;               // ugs-calibrate output folder
+  double raster_cell = 0;
+  std::string map_extent;                // XMIN/XMAX/YMIN/YMAX
+  std::string python;
+  bool keep_work = false;
+  int width = 1600, height = 1000, dpi = 160;
+};
+
+// One figure for plots.py: its kind, PNG name and the JSON members describing its data.
+struct Figure {
+  std::string kind, png, title, json;   // json: extra members, "key": value, ... (no braces)
+  std::string caption;
+};
+
+// A number of the summary page next to the thesis' value.
+struct Headline {
+  std::string group, quantity, value, thesis;
+};
+
+struct Context {
+  Options opt;
+  std::string work;                      // work folder (absolute)
+  std::string out;                       // output folder being written (absolute)
+  std::optional<CaseFile> cs;
+  std::optional<Mesh> mesh;
+  std::string crs_wkt;
+  std::vector<Phase> phases;
+  std::unique_ptr<FieldSeriesReader> results;
+  std::vector<std::int64_t> result_times;
+  std::string surface_results;            // displacement on the top: ugs-solve's top file, else the results
+  std::optional<insar::TopSurface> top;  // its top surface (the mesh's bnd:top, or the file's own cells)
+  std::vector<Figure> figures;
+  std::vector<Headline> headlines;
+  std::vector<std::string> notes;        // what was skipped and why
+  std::optional<insar::PsData> measured_up, measured_east;
+  std::vector<std::vector<std::array<double, 2>>> trace_lines;  // rings of the reservoir trace
+  std::vector<std::string> written;      // GeoTIFFs and other data files in the output
+  std::string command_line;
+
+  std::string work_file(const std::string& name) const { return work + "/" + name; }
+  void add(Figure f) { figures.push_back(std::move(f)); }
+};
+
+// JSON text of a string.
+std::string jstr(const std::string& s);
+// Relative path of a work file as plots.py sees it (work/<name>).
+std::string jwork(const std::string& name);
+std::string slug(const std::string& s);
+std::string mm(double v);  // "3.21"
+
+// Figure builders (each adds figures, headlines and notes).
+void build_maps(Context& c);
+void build_series(Context& c);
+void build_stress(Context& c);
+void build_faults(Context& c);
+void build_calibration(Context& c);
+// Writes summary.md and summary.html in the output folder.
+void write_summary(const Context& c);
+
+// Field values of a step, or interpolated linearly between the steps around `t` (InputError if `t`
+// lies outside the results).
+std::vector<double> cell_field_at(const FieldSeriesReader& r, const std::vector<std::int64_t>& times, const std::string& name,
+                                  std::int64_t t, int& components);
+
+}  // namespace ugs::report
