@@ -48,7 +48,7 @@ OUTPUTS = [
     "domain.geojson", "refinement.geojson", "reservoir_traces.geojson", "aquifers.geojson",
     "faults.geojson", "sections.geojson", "ps_points.geojson",
 ] + ["surfaces/" + s[1] for s in F.SURFACES] + [
-    "strata.toml", "case.toml", "pressure_pool_a.csv", "pressure_pool_c.csv",
+    "strata.toml", "strata_coarse.toml", "case.toml", "pressure_pool_a.csv", "pressure_pool_c.csv",
     "insar_vertical.csv", "insar_east.csv",
 ]
 
@@ -248,6 +248,8 @@ def generate(args):
 
         with open(os.path.join(tmp, "strata.toml"), "w", newline="\n") as fh:
             fh.write(T.strata_toml(variant, args.seed))
+        with open(os.path.join(tmp, "strata_coarse.toml"), "w", newline="\n") as fh:
+            fh.write(T.strata_toml(variant, args.seed, coarse=True))
         with open(os.path.join(tmp, "case.toml"), "w", newline="\n") as fh:
             fh.write(T.case_toml(variant, args.seed))
 
@@ -257,9 +259,13 @@ def generate(args):
         PP.write_csv(os.path.join(tmp, "pressure_pool_a.csv"), dates, pa)
         PP.write_csv(os.path.join(tmp, "pressure_pool_c.csv"), dates, pc)
 
-        log(args, "InSAR series (Geertsma nuclei of strain + trend + noise)")
+        solver_model = os.path.join(HERE, "insar_model.csv")
+        if not os.path.isfile(solver_model):
+            solver_model = None
+        log(args, "InSAR series (" + ("ugs-solve's displacement in insar_model.csv + noise" if solver_model
+                                      else "Geertsma nuclei of strain + trend + noise") + ")")
         obs, data, _ = I.series(field, args.seed, traces, {"Pool A": aquifers["Pool A"], "Pool C": aquifers["Pool C"]},
-                                {"Pool A": pa, "Pool C": pc}, pts)
+                                {"Pool A": pa, "Pool C": pc}, pts, solver_model)
         en = to_3035(pts)
         I.write_egms_csv(os.path.join(tmp, "insar_vertical.csv"), pts, heights, en, obs, data["U"])
         I.write_egms_csv(os.path.join(tmp, "insar_east.csv"), pts, heights, en, obs, data["E"])

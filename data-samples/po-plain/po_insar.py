@@ -209,9 +209,37 @@ def fit_stats(days, y):
     }
 
 
-def series(field, seed, traces, aquifers, pressures, points):
-    """Return (acquisition dates, {"U": array, "E": array} in mm, model monthly (dates, uz, ue))."""
-    dates_m, uz, ue = model_displacements(field, traces, aquifers, pressures, points)
+def solver_displacements(path, points):
+    """The noise-free twin from ugs-solve: a ugs-sample table (pid, date, east_mm, up_mm, ... at the
+    solver's steps) for the six PS points -> (dates, uz, ue) in mm, points in `points` order."""
+    import csv
+    rows = {}
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(line for line in fh if not line.startswith("#"))
+        for r in reader:
+            rows.setdefault(r["pid"], []).append((dt.date.fromisoformat(r["date"]), float(r["up_mm"]), float(r["east_mm"])))
+    missing = [p[0] for p in points if p[0] not in rows]
+    if missing:
+        raise RuntimeError(f"{path}: no series for PS points {missing}")
+    dates = [d for d, _, _ in rows[points[0][0]]]
+    for p in points:
+        if [d for d, _, _ in rows[p[0]]] != dates:
+            raise RuntimeError(f"{path}: the series of {p[0]} has other dates than {points[0][0]}'s")
+    uz = np.array([[u for _, u, _ in rows[p[0]]] for p in points])
+    ue = np.array([[e for _, _, e in rows[p[0]]] for p in points])
+    return dates, uz, ue
+
+
+def series(field, seed, traces, aquifers, pressures, points, solver_model=None):
+    """Return (acquisition dates, {"U": array, "E": array} in mm, model (dates, uz, ue)).
+
+    With `solver_model` (a ugs-sample table, see solver_displacements) the measured series are the
+    solver's displacement plus noise only: the twin the calibration must recover. Without it, the
+    Geertsma nuclei model plus a trend per point plus noise (the generator's own model)."""
+    if solver_model:
+        dates_m, uz, ue = solver_displacements(solver_model, points)
+    else:
+        dates_m, uz, ue = model_displacements(field, traces, aquifers, pressures, points)
     obs = acquisition_dates()
     days = np.array([d.toordinal() for d in obs], dtype=float)
     yrs = (days - days[0]) / 365.25
@@ -225,7 +253,7 @@ def series(field, seed, traces, aquifers, pressures, points):
             sig = np.array([NOISE[comp][0] if d < SENTINEL_START else NOISE[comp][1] for d in obs])
             noise = rng.normal(0.0, 1.0, len(obs)) * sig
             noise[0] = 0.0
-            trend = TRENDS[p[0]][0 if comp == "U" else 1]
+            trend = 0.0 if solver_model else TRENDS[p[0]][0 if comp == "U" else 1]
             data[k] = m[k] + trend * yrs + noise
         out[comp] = data
     return obs, out, (dates_m, uz, ue)

@@ -230,51 +230,75 @@ public:
   std::size_t tetrahedra() const { return T_.size(); }
   std::size_t snapped() const { return snapped_; }
 
-  // Nodes that must not move: on a triangle (boundary, other faults), on a material interface.
-  void init_fixed() {
-    fixed_.assign(X_.size(), 0);
-    for (const auto& f : F_)
-      for (auto v : f) fixed_[v] = 1;
-    std::vector<std::uint32_t> block_of(X_.size(), std::numeric_limits<std::uint32_t>::max());
-    for (std::size_t i = 0; i < T_.size(); ++i)
-      for (auto v : T_[i]) {
-        if (block_of[v] == std::numeric_limits<std::uint32_t>::max()) block_of[v] = Tb_[i];
-        else if (block_of[v] != Tb_[i]) fixed_[v] = 1;
-      }
-  }
+  // Nodes that must not move: none any more; nodes move only within the surfaces they lie on
+  // (snap_onto). Kept for the call order of cut_faults.
+  void init_fixed() {}
 
-  // Before cutting by p: a free node closer to p than `ratio` times its shortest edge is moved onto
-  // p (along p's normal) when its tetrahedra stay positive and their smallest dihedral angle does
-  // not fall below half of what it was: the cut would otherwise leave slivers of that thickness.
-  void snap(const CutPanel& p, double ratio) {
-    if (ratio <= 0) return;
-    const std::size_t n = X_.size();
-    fixed_.resize(n, 1);
-    std::vector<double> g(n);
-    for (std::size_t i = 0; i < n; ++i) g[i] = dot(p.n, X_[i]) - p.c;
-    // Candidates: free nodes off the plane near it, inside the panel's bounds widened by 1 km.
-    std::vector<std::uint32_t> cand_index(n, std::numeric_limits<std::uint32_t>::max());
-    std::vector<std::uint32_t> cands;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (fixed_[i] || std::abs(g[i]) <= tol_) continue;
-      bool near = true;
-      for (const auto& b : p.bounds)
-        if (dot(b.m, X_[i]) > b.d + 1000.0) near = false;
-      if (!near) continue;
-      cand_index[i] = static_cast<std::uint32_t>(cands.size());
-      cands.push_back(static_cast<std::uint32_t>(i));
-    }
-    if (cands.empty()) return;
-    std::vector<std::vector<std::uint32_t>> tets_of(cands.size());
-    std::vector<double> hmin(cands.size(), std::numeric_limits<double>::infinity());
-    for (std::size_t t = 0; t < T_.size(); ++t)
-      for (int k = 0; k < 4; ++k) {
-        const auto c = cand_index[T_[t][k]];
-        if (c == std::numeric_limits<std::uint32_t>::max()) continue;
-        tets_of[c].push_back(static_cast<std::uint32_t>(t));
-        for (int j = 0; j < 4; ++j)
-          if (j != k) hmin[c] = std::min(hmin[c], norm(sub(X_[T_[t][j]], X_[T_[t][k]])));
+  // The planes a node must stay on: its triangles (model boundary, other groups), the faces
+  // between two materials around it, and the planes of the panels already cut through it.
+  // Returns unit normals (not deduplicated).
+  // Snaps nodes onto the plane N . x = C before cutting (docs/dipping-faults.md, "Snap"): where one
+  // of `edges` crosses the plane within `ratio` of its length from a node, the node is moved onto
+  // the plane, within the surfaces it lies on (`extra`: more planes it stays on if it lies on them), when its
+  // tetrahedra stay positive and keep at least half their smallest dihedral angle.
+  void snap_onto(const Point3& N, double C, double ratio, const std::vector<std::array<std::uint32_t, 2>>& edges,
+                 const std::vector<std::pair<Point3, double>>& extra) {
+    if (ratio <= 0 || edges.empty()) return;
+    const std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    auto g = [&](std::uint32_t v) { return dot(N, X_[v]) - C; };
+    // Candidates: the end of a crossing edge within ratio of the crossing, nearest first.
+    std::unordered_map<std::uint32_t, double> score;
+    for (const auto& [a, b] : edges) {
+      const double ga = g(a), gb = g(b);
+      if (!crosses(ga, gb)) continue;
+      const double t = ga / (ga - gb);
+      for (auto [v, tv] : {std::pair{a, t}, std::pair{b, 1 - t}}) {
+        if (tv >= ratio) continue;
+        auto it = score.find(v);
+        if (it == score.end() || tv < it->second) score[v] = tv;
       }
+    }
+    if (score.empty()) return;
+    std::vector<std::pair<double, std::uint32_t>> order;
+    for (const auto& [v, t] : score) order.push_back({t, v});
+    std::sort(order.begin(), order.end());
+    std::unordered_map<std::uint32_t, std::uint32_t> cand_index;
+    for (std::size_t c = 0; c < order.size(); ++c) cand_index.emplace(order[c].second, static_cast<std::uint32_t>(c));
+    std::vector<std::vector<std::uint32_t>> tets_of(order.size());
+    std::vector<std::vector<Point3>> normals(order.size());
+    for (std::size_t t = 0; t < T_.size(); ++t)
+      for (int k = 0; k < 4; ++k)
+        if (auto it = cand_index.find(T_[t][k]); it != cand_index.end()) tets_of[it->second].push_back(static_cast<std::uint32_t>(t));
+    for (const auto& f : F_)
+      for (int k = 0; k < 3; ++k)
+        if (auto it = cand_index.find(f[k]); it != cand_index.end())
+          normals[it->second].push_back(unit(cross(sub(X_[f[1]], X_[f[0]]), sub(X_[f[2]], X_[f[0]]))));
+    static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    for (std::size_t c = 0; c < order.size(); ++c) {
+      const std::uint32_t v = order[c].second;
+      // Faces around v between two materials: shared by two of its tetrahedra of different blocks.
+      std::map<std::array<std::uint32_t, 3>, std::uint32_t> face_block;
+      for (auto t : tets_of[c])
+        for (const auto& f : face_of) {
+          std::array<std::uint32_t, 3> key{T_[t][f[0]], T_[t][f[1]], T_[t][f[2]]};
+          if (key[0] != v && key[1] != v && key[2] != v) continue;
+          std::sort(key.begin(), key.end());
+          auto [it, fresh] = face_block.emplace(key, Tb_[t]);
+          if (!fresh && it->second != Tb_[t] && it->second != none) {
+            normals[c].push_back(unit(cross(sub(X_[key[1]], X_[key[0]]), sub(X_[key[2]], X_[key[0]]))));
+            it->second = none;
+          }
+        }
+      // Panels cut so far: their planes, and the outline of those the node lies on.
+      for (const CutPanel* q : done_) {
+        if (std::abs(dot(q->n, X_[v]) - q->c) > tol_) continue;
+        normals[c].push_back(q->n);
+        for (const auto& b : q->bounds)
+          if (std::abs(dot(b.m, X_[v]) - b.d) <= tol_) normals[c].push_back(b.m);
+      }
+      for (const auto& [m, d] : extra)
+        if (std::abs(dot(m, X_[v]) - d) <= tol_) normals[c].push_back(m);
+    }
     auto worst = [&](const std::vector<std::uint32_t>& tets, double& min_vol) {
       double a = 180;
       min_vol = std::numeric_limits<double>::infinity();
@@ -285,37 +309,64 @@ public:
       }
       return a;
     };
-    for (std::size_t c = 0; c < cands.size(); ++c) {
-      const auto v = cands[c];
-      const double gv = dot(p.n, X_[v]) - p.c;
-      if (std::abs(gv) >= ratio * hmin[c] || std::abs(gv) <= tol_) continue;
-      // Only a node with a neighbour across the plane would make a cut near it.
-      double vol0;
-      const double a0 = worst(tets_of[c], vol0);
-      const Point3 old = X_[v];
-      X_[v] = {old[0] - gv * p.n[0], old[1] - gv * p.n[1], old[2] - gv * p.n[2]};
-      double vol1;
-      const double a1 = worst(tets_of[c], vol1);
-      if (vol1 > 0 && a1 >= 0.5 * a0) {
-        ++snapped_;
-      } else {
-        X_[v] = old;
+    for (std::size_t c = 0; c < order.size(); ++c) {
+      const std::uint32_t v = order[c].second;
+      const double gv = g(v);
+      if (std::abs(gv) <= tol_) continue;
+      double hmin = std::numeric_limits<double>::infinity();
+      for (auto t : tets_of[c])
+        for (auto w : T_[t])
+          if (w != v) hmin = std::min(hmin, norm(sub(X_[w], X_[v])));
+      // The direction of N within the node's surfaces: N minus its part along their normals (a
+      // basis of which is built with a loose threshold first, so that a slightly curved layer
+      // surface counts as one plane, and then strictly). The move must keep every surface to tol_.
+      bool moved = false;
+      for (double loose : {0.02, 1e-9}) {
+        std::vector<Point3> basis;
+        for (const auto& m : normals[c]) {
+          Point3 r = m;
+          for (const auto& b : basis) r = sub(r, scaled(b, dot(b, r)));
+          if (norm(r) > loose) basis.push_back(unit(r));
+        }
+        if (basis.size() >= 3) break;
+        Point3 d = N;
+        for (const auto& b : basis) d = sub(d, scaled(b, dot(b, d)));
+        const double dd = dot(d, d);
+        if (dd < 0.01) break;  // the surfaces run nearly parallel to the plane: the move would be long
+        const Point3 delta = scaled(d, -gv / dd);
+        if (norm(delta) > 0.5 * hmin) break;
+        bool keeps = true;
+        for (const auto& m : normals[c]) keeps = keeps && std::abs(dot(m, delta)) <= tol_;
+        if (!keeps) continue;
+        double vol0, vol1;
+        const double a0 = worst(tets_of[c], vol0);
+        const Point3 old = X_[v];
+        X_[v] = {old[0] + delta[0], old[1] + delta[1], old[2] + delta[2]};
+        const double a1 = worst(tets_of[c], vol1);
+        if (vol1 > 0 && a1 >= 0.5 * a0) {
+          ++snapped_;
+          moved = true;
+        } else {
+          X_[v] = old;
+        }
+        break;
       }
+      (void)moved;
     }
   }
 
-  // After a panel: its nodes are fixed for the next panels.
-  void fix_plane(const CutPanel& p) {
-    fixed_.resize(X_.size(), 1);
-    for (std::size_t i = 0; i < X_.size(); ++i)
-      if (std::abs(dot(p.n, X_[i]) - p.c) <= tol_) fixed_[i] = 1;
-  }
+  // Step 1's snap: nodes of the tetrahedra whose section by P meets Q.
+  void snap(const CutPanel& p, double ratio) { snap_onto(p.n, p.c, ratio, plane_edges(p), {}); }
 
-  // Step 1 for one panel.
-  void cut_plane(const CutPanel& p) {
+  // After a panel: nodes on its plane stay on it from then on.
+  void fix_plane(const CutPanel& p) { done_.push_back(&p); }
+
+  // The edges crossing P of the tetrahedra whose section by P meets Q.
+  std::vector<std::array<std::uint32_t, 2>> plane_edges(const CutPanel& p) const {
     std::vector<double> g(X_.size());
     for (std::size_t i = 0; i < X_.size(); ++i) g[i] = dot(p.n, X_[i]) - p.c;
-    EdgeMap marked;
+    std::vector<std::array<std::uint32_t, 2>> out;
+    std::unordered_set<std::uint64_t> seen;
     std::vector<Point3> section;
     for (const auto& t : T_) {
       double lo = g[t[0]], hi = lo;
@@ -333,13 +384,36 @@ public:
       if (separated(section, p.bounds, nullptr)) continue;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
-          if (crosses(g[t[i]], g[t[j]])) mark(marked, t[i], t[j], g);
+          if (crosses(g[t[i]], g[t[j]]) && seen.insert(edge_key(t[i], t[j])).second) out.push_back({t[i], t[j]});
     }
+    return out;
+  }
+
+  // Step 1 for one panel.
+  void cut_plane(const CutPanel& p) {
+    std::vector<double> g(X_.size());
+    for (std::size_t i = 0; i < X_.size(); ++i) g[i] = dot(p.n, X_[i]) - p.c;
+    EdgeMap marked;
+    for (const auto& [a, b] : plane_edges(p)) mark(marked, a, b, g);
     apply(marked);
   }
 
-  // Step 2 for one bound of one panel.
-  void cut_bound(const CutPanel& p, std::size_t bi) {
+  // Step 2 for one bound of one panel: nodes on P next to the bound's plane are snapped onto it
+  // (staying on P and their other surfaces), then the edges are bisected.
+  void cut_bound(const CutPanel& p, std::size_t bi, double ratio) {
+    std::vector<std::pair<Point3, double>> keep{{p.n, p.c}};  // P, and its other bounds
+    for (std::size_t k = 0; k < p.bounds.size(); ++k)
+      if (k != bi) keep.push_back({p.bounds[k].m, p.bounds[k].d});
+    snap_onto(p.bounds[bi].m, p.bounds[bi].d, ratio, bound_edges(p, bi), keep);
+    EdgeMap marked;
+    std::vector<double> h(X_.size());
+    for (std::size_t i = 0; i < X_.size(); ++i) h[i] = dot(p.bounds[bi].m, X_[i]) - p.bounds[bi].d;
+    for (const auto& [a, b] : bound_edges(p, bi)) mark(marked, a, b, h);
+    apply(marked);
+  }
+
+  // The edges lying in P that cross bound bi's plane along Q's edge.
+  std::vector<std::array<std::uint32_t, 2>> bound_edges(const CutPanel& p, std::size_t bi) const {
     const CutHalfSpace& B = p.bounds[bi];
     const std::size_t n = X_.size();
     std::vector<char> on(n);
@@ -377,11 +451,10 @@ public:
     double margin = 0;
     for (const auto& c : cands)
       if (outside_by(c.x) <= 2 * c.len) margin = std::max(margin, 2 * c.len);
-    EdgeMap marked;
-    std::vector<double> hh = h;
+    std::vector<std::array<std::uint32_t, 2>> out;
     for (const auto& c : cands)
-      if (outside_by(c.x) <= margin + tol_) mark(marked, c.a, c.b, hh);
-    apply(marked);
+      if (outside_by(c.x) <= margin + tol_) out.push_back({c.a, c.b});
+    return out;
   }
 
   // Faces lying in panel p with their centroid inside it, sorted node triples -> oriented face.
@@ -619,7 +692,7 @@ private:
   std::vector<std::uint32_t> Tb_;
   std::vector<std::array<std::uint32_t, 3>> F_;
   std::vector<std::uint32_t> Fb_;
-  std::vector<char> fixed_;
+  std::vector<const CutPanel*> done_;  // the panels cut so far
   std::size_t snapped_ = 0;
 };
 
@@ -654,7 +727,7 @@ FaultCutSummary cut_faults(Mesh& mesh, const std::vector<FaultTrace>& traces, co
     for (const auto& p : fp) {
       cut.snap(p, options.snap);
       cut.cut_plane(p);
-      for (std::size_t b = 0; b < p.bounds.size(); ++b) cut.cut_bound(p, b);
+      for (std::size_t b = 0; b < p.bounds.size(); ++b) cut.cut_bound(p, b, options.snap);
       cut.fix_plane(p);
     }
   sum.snapped = cut.snapped();

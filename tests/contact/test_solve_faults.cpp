@@ -72,6 +72,10 @@ TEST(SolveFaults, OutputsOnTheFaultSurface) {
   EXPECT_EQ(faults.cell_types(), std::vector<ElementType>{ElementType::Triangle});
   const Mesh mesh = read_msh(d / "faulted.msh");
   EXPECT_EQ(faults.num_cells(), mesh.count(ElementType::Prism));
+  // The fault triangles carry the mesh's tag of their fault group, so readers name them from the mesh.
+  const PhysicalGroup* group = mesh.find_physical(3, "fault:F");
+  ASSERT_NE(group, nullptr);
+  for (std::int32_t m : faults.materials()) EXPECT_EQ(m, group->tag);
   const Field chi = faults.cell_field(1, "chi");
   ASSERT_EQ(chi.count(), faults.num_cells());
   double cmax = 0;

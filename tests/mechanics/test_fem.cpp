@@ -195,3 +195,4 @@ TEST(MaterialPoint, OedometricHypoplasticStepAndTangent) {
   EXPECT_NEAR((u2.dsig[ZZ] - u.dsig[ZZ]) / (-h), u.Dt[6 * ZZ + ZZ], 1e-5 * u.Dt[6 * ZZ + ZZ]);
   EXPECT_NEAR(u.Dt[6 * ZZ + ZZ], 1e6 / cM(26), 1e-6 * 1e6 / cM(26));
 }
+

@@ -112,6 +112,9 @@ int main(int argc, char** argv) {
   app.add_option("--exaggeration", o.exaggeration, "Vertical exaggeration of the sections")->capture_default_str();
   app.add_option("--section-zrange", o.section_zrange, "ZMIN/ZMAX of the sections (default: the pool layer +- 150 m)");
   app.add_option("--calibration", o.calibration, "An ugs-calibrate output folder: its misfit profile and best values");
+  app.add_option("--discussion", o.discussion,
+                 "Markdown file: why this case's numbers differ from the thesis' (a section of the summary)")
+      ->check(CLI::ExistingFile);
   app.add_option("--raster-cell", o.raster_cell, "GeoTIFF cell size in m (default: about 400 cells across)");
   app.add_option("--map-extent", o.map_extent, "XMIN/XMAX/YMIN/YMAX of the PNG maps (default: around the trace)");
   app.add_option("--python", o.python, "Python with matplotlib (default: /usr/bin/python3)");

@@ -36,6 +36,7 @@ struct Options {
   std::string fault_dates;               // MIN_DATE,MAX_DATE
   std::string fault_field = "chi";
   std::string calibration;               // ugs-calibrate output folder
+  std::string discussion;                // Markdown paragraphs comparing the run with the thesis
   double raster_cell = 0;
   std::string map_extent;                // XMIN/XMAX/YMIN/YMAX
   std::string python;

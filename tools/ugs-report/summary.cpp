@@ -2,7 +2,13 @@
 // every figure with its caption, the GeoTIFFs, and what was skipped. Markdown and HTML.
 #include <fmt/format.h>
 
+#include <fstream>
+#include <regex>
+#include <sstream>
+
 #include "report.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
 #include "ugs/formats/io.hpp"
 
 namespace ugs::report {
@@ -32,9 +38,58 @@ std::string md_cell(const std::string& s) {
   return r;
 }
 
+std::string read_discussion(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "cannot read the discussion file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The first number of a headline's text ("3.21 mm at (x, y)" -> 3.21), for scripts and tests.
+std::optional<double> leading_number(const std::string& s) {
+  static const std::regex number(R"([-+]?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?)");
+  std::smatch m;
+  if (!std::regex_search(s, m, number)) return std::nullopt;
+  return std::stod(m.str());
+}
+
+// paragraphs -> <p>, '- ' lines -> <li>; enough for the notes a case ships with.
+std::string discussion_html(const std::string& md) {
+  std::string out, para;
+  bool in_list = false;
+  auto flush = [&] {
+    if (!para.empty()) out += "<p>" + html(para) + "</p>\n";
+    para.clear();
+  };
+  std::istringstream in(md);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("- ", 0) == 0) {
+      flush();
+      if (!in_list) out += "<ul>\n";
+      in_list = true;
+      out += "<li>" + html(line.substr(2)) + "</li>\n";
+    } else if (line.find_first_not_of(" \t\r") == std::string::npos) {
+      flush();
+      if (in_list) out += "</ul>\n";
+      in_list = false;
+    } else if (in_list && line.rfind("  ", 0) == 0) {
+      out.insert(out.size() - 6, " " + html(line.substr(line.find_first_not_of(' '))));
+    } else {
+      if (in_list) out += "</ul>\n";
+      in_list = false;
+      para += (para.empty() ? "" : " ") + line;
+    }
+  }
+  flush();
+  if (in_list) out += "</ul>\n";
+  return out;
+}
+
 }  // namespace
 
 void write_summary(const Context& c) {
+  const std::string discussion = c.opt.discussion.empty() ? std::string() : read_discussion(c.opt.discussion);
   const std::string title = fmt::format("ugs report: {}", c.cs ? c.cs->path : c.opt.results);
   std::vector<std::pair<std::string, std::string>> inputs{{"results", c.opt.results}, {"top-surface series", c.surface_results}};
   if (!c.opt.mesh.empty()) inputs.emplace_back("mesh", c.opt.mesh);
@@ -53,6 +108,7 @@ void write_summary(const Context& c) {
   md += "- phases: " + phases + "\n\n## Headline numbers\n\n| | quantity | this run | thesis |\n|---|---|---|---|\n";
   for (const auto& h : c.headlines)
     md += fmt::format("| {} | {} | {} | {} |\n", md_cell(h.group), md_cell(h.quantity), md_cell(h.value), md_cell(h.thesis));
+  if (!discussion.empty()) md += "\n## Comparison with the thesis\n\n" + discussion + (discussion.back() == '\n' ? "" : "\n");
   md += "\n## Figures\n\n";
   for (const auto& f : c.figures) md += fmt::format("### {}\n\n![{}]({})\n\n{}\n\n", f.title, f.title, f.png, f.caption);
   if (!c.written.empty()) {
@@ -82,7 +138,9 @@ void write_summary(const Context& c) {
   for (const auto& x : c.headlines)
     h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", html(x.group), html(x.quantity),
                      html(x.value), html(x.thesis));
-  h += "</table>\n<h2>Figures</h2>\n";
+  h += "</table>\n";
+  if (!discussion.empty()) h += "<h2>Comparison with the thesis</h2>\n" + discussion_html(discussion);
+  h += "<h2>Figures</h2>\n";
   for (const auto& f : c.figures)
     h += fmt::format("<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n", html(f.png), html(f.title),
                      html(f.caption));
@@ -100,6 +158,16 @@ void write_summary(const Context& c) {
   OutputFile fh(c.out + "/summary.html");
   fh.write(h);
   fh.commit();
+
+  // The same numbers for scripts: value_number is the first number of the value's text (mm, chi, m...).
+  CsvWriter w(c.out + "/headlines.csv", {"group", "quantity", "value", "value_number", "thesis"});
+  for (const auto& x : c.headlines) {
+    w.text(x.group).text(x.quantity).text(x.value);
+    if (const auto v = leading_number(x.value)) w.number(*v);
+    else w.text("");
+    w.text(x.thesis).end_row();
+  }
+  w.commit();
 }
 
 }  // namespace ugs::report

@@ -326,6 +326,17 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
+  // The surface keeps the mesh's tag of each fault group, so readers of the results (ugs-report)
+  // name the faults from the mesh. Every group of the surface is a fault group, whose mesh tags are
+  // distinct, so the renaming is one simultaneous map.
+  std::map<int, int> mesh_tag;
+  for (const auto& pg : S.mesh.physicals)
+    if (const PhysicalGroup* g = mesh.find_physical(3, pg.name)) mesh_tag[pg.tag] = g->tag;
+  if (mesh_tag.size() == S.mesh.physicals.size()) {
+    for (auto& pg : S.mesh.physicals) pg.tag = mesh_tag.at(pg.tag);
+    for (auto& e : S.mesh.entities)
+      for (int& t : e.physicals) t = mesh_tag.at(t);
+  }
   S.mesh.update_entity_bboxes();
   return fm;
 }

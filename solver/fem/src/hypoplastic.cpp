@@ -95,40 +95,37 @@ const char* inversion_rule_name(InversionRule r) {
 
 double HypoParams::cm(double sigma) const { return a * std::pow(std::max(sigma, sigma_min), -b); }
 
-HypoResult hypo_integrate(const HypoParams& p, const HypoState& st, double s0, double J, int guess, bool lock_ur) {
+HypoResult hypo_integrate(const HypoParams& p, const HypoState& st, double s0, double J, int guess, Hold hold) {
   HypoResult r;
   r.state = st;
   const int dir = J > 0 ? +1 : J < 0 ? -1 : (guess >= 0 ? +1 : -1);
+  // The direction that selects the inversion stress: a held branch keeps the one it was held with.
+  const int dir_inv = hold == Hold::Virgin ? +1 : hold == Hold::UnloadReload ? (guess >= 0 ? +1 : -1) : dir;
   // A change of direction is a load inversion at s0.
-  const double s_inv = dir != st.direction ? s0 : st.sigma_inv;
+  const double s_inv = dir_inv != st.direction ? s0 : st.sigma_inv;
   const Branch virgin = virgin_branch(p), ur = ur_branch(p, st, s_inv);
   // Below sigma_max, with a margin for the round-off of sigma carried through the stress.
   const bool below = s0 < st.sigma_max - 1e-9 * std::max(1.0, st.sigma_max);
-  if (lock_ur) {
-    r.sigma1 = ur.solve(s0, J);
-    r.c_tangent = ur.c(r.sigma1);
-    r.phase = dir > 0 ? LoadingPhase::Reloading : LoadingPhase::Unloading;
-  } else if (dir > 0) {
-    if (below) {
-      const double Jr = ur.integral(s0, st.sigma_max);
-      if (J <= Jr) {
-        r.sigma1 = ur.solve(s0, J);
-        r.c_tangent = ur.c(r.sigma1);
-        r.phase = LoadingPhase::Reloading;
-      } else {
-        r.sigma1 = virgin.solve(st.sigma_max, J - Jr);
-        r.c_tangent = virgin.c(r.sigma1);
-        r.phase = LoadingPhase::Virgin;
-      }
-    } else {
-      r.sigma1 = virgin.solve(s0, J);
-      r.c_tangent = virgin.c(r.sigma1);
-      r.phase = LoadingPhase::Virgin;
-    }
+  // The knee: reloading reaches sigma_max at J_knee (at sigma_max already: J = 0).
+  const double s_knee = below ? st.sigma_max : s0;
+  r.J_knee = below ? ur.integral(s0, st.sigma_max) : 0.0;
+  bool on_virgin = false;
+  if (hold == Hold::UnloadReload) {
+    on_virgin = false;
+  } else if (hold == Hold::Virgin) {
+    on_virgin = true;
+  } else {
+    on_virgin = dir > 0 && (J > r.J_knee || (!below && J == 0));
+  }
+  if (on_virgin) {
+    // (held: the virgin curve continued below the knee)
+    r.sigma1 = virgin.solve(s_knee, J - r.J_knee);
+    r.c_tangent = virgin.c(r.sigma1);
+    r.phase = LoadingPhase::Virgin;
   } else {
     r.sigma1 = ur.solve(s0, J);
     r.c_tangent = ur.c(r.sigma1);
-    r.phase = LoadingPhase::Unloading;
+    r.phase = dir > 0 ? LoadingPhase::Reloading : LoadingPhase::Unloading;
   }
   if (!std::isfinite(r.sigma1)) {
     // The virgin law (b > 1) has a finite strain capacity; report it and keep numbers finite.
@@ -138,16 +135,16 @@ HypoResult hypo_integrate(const HypoParams& p, const HypoState& st, double s0, d
   }
   const double ds = r.sigma1 - s0;
   if (J == 0 || std::abs(ds) <= 1e-9 * std::max(std::abs(s0), 1.0)) {
-    // Vanishing step: the secant is the tangent at the midpoint (exact to O(ds^2)).
+    // Vanishing step: the secant is the tangent of the branch at the midpoint (exact to O(ds^2)).
     const double mid = 0.5 * (s0 + r.sigma1);
-    r.c_secant = (!lock_ur && r.phase == LoadingPhase::Virgin && mid >= st.sigma_max) ? virgin.c(mid) : ur.c(mid);
+    r.c_secant = on_virgin && (hold == Hold::Virgin || !below) ? virgin.c(mid) : ur.c(mid);
     if (J == 0) r.c_tangent = r.c_secant;
   } else {
     r.c_secant = J / ds;
   }
   if (J != 0) {
     r.state.direction = dir;
-    r.state.sigma_inv = s_inv;
+    r.state.sigma_inv = dir != st.direction ? s0 : st.sigma_inv;
     r.state.sigma_max = std::max(st.sigma_max, r.sigma1);
   }
   return r;

@@ -27,14 +27,15 @@ Mat6 Material::elastic_D(double s0) const {
   return D;
 }
 
-PointUpdate hypo_update(const Material& m, const PointState& st, double s0, const Vec6& eps, int guess, bool lock_ur) {
+PointUpdate hypo_update(const Material& m, const PointState& st, double s0, const Vec6& eps, int guess, Hold hold) {
   Vec6 de;
   for (int i = 0; i < 6; ++i) de[i] = eps[i] - st.eps[i];
   const Vec6 Dde = mat_vec(m.Dhat, de);
   const double J = -Dde[ZZ];
-  const HypoResult h = hypo_integrate(m.hypo, st.hypo, s0, J, guess, lock_ur);
+  const HypoResult h = hypo_integrate(m.hypo, st.hypo, s0, J, guess, hold);
   PointUpdate u;
   u.J = J;
+  u.J_knee = h.J_knee;
   const double inv_sec = 1e6 / h.c_secant, inv_tan = 1e6 / h.c_tangent;  // Pa
   for (int i = 0; i < 6; ++i) u.dsig[i] = st.dsig[i] + Dde[i] * inv_sec;
   const double g = inv_tan - inv_sec;

@@ -50,9 +50,15 @@ std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& r, std::size_t ste
     auto& f = by_tag[tag];
     if (f.name.empty()) {
       std::string name;
-      if (mesh)
+      // Physical tags are per dimension: prefer a fault group (interface prisms are 3D, fault
+      // triangles 2D), then any group with the tag.
+      if (mesh) {
+        for (int dim : {3, 2})
+          if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty() && g->name.rfind("fault:", 0) == 0)
+            name = g->name;
         for (int dim : {2, 3})
           if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty()) name = g->name;
+      }
       if (name.rfind("fault:", 0) == 0) name = name.substr(6);
       f.name = name.empty() ? fmt::format("fault {}", tag) : name;
     }
@@ -74,7 +80,19 @@ std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& r, std::size_t ste
         sxy += (p[0] - mx) * (p[1] - my);
         syy += (p[1] - my) * (p[1] - my);
       }
-    const double ang = 0.5 * std::atan2(2 * sxy, sxx - syy);
+    // Strike: horizontal and normal to the mean fault normal (area-weighted, triangles oriented
+    // alike); the plan's principal direction only for a (nearly) horizontal fault, whose strike is
+    // undefined — the corners' spread in plan would pick the dip direction of a short, wide fault.
+    double nx = 0, ny = 0, nz = 0;
+    for (const auto& t : f.triangles) {
+      const double ax = t[1][0] - t[0][0], ay = t[1][1] - t[0][1], az = t[1][2] - t[0][2];
+      const double bx = t[2][0] - t[0][0], by = t[2][1] - t[0][1], bz = t[2][2] - t[0][2];
+      double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+      if (cx * nx + cy * ny + cz * nz < 0) cx = -cx, cy = -cy, cz = -cz;
+      nx += cx, ny += cy, nz += cz;
+    }
+    const double nh = std::hypot(nx, ny), nn = std::sqrt(nx * nx + ny * ny + nz * nz);
+    const double ang = nh > 1e-3 * nn ? std::atan2(nx, -ny) : 0.5 * std::atan2(2 * sxy, sxx - syy);
     double ux = std::cos(ang), uy = std::sin(ang);
     if (ux < 0 || (ux == 0 && uy < 0)) ux = -ux, uy = -uy;  // s grows eastwards
     double smin = 1e300;

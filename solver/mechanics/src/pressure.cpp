@@ -14,6 +14,9 @@ namespace ugs::mech {
 struct PressureHistory::File {
   std::unique_ptr<FieldSeriesReader> reader;
   std::vector<std::uint32_t> mesh_index;  // mesh node of each file node
+  // Mesh nodes that are corners of this file's cells without being file nodes themselves: the twins
+  // ugs-faultinsert made on a fault, which take the pressure of the file node they were split from.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> twins;  // (mesh node, file node)
   std::vector<double> times;
   // The two steps last read (values per file node).
   long cached[2] = {-1, -1};
@@ -65,31 +68,44 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
     // The elements this pool's pressure acts on: its sub-mesh cells (tags kept by ugs-submesh), or
     // failing cells, every element whose four nodes the file covers.
     const int fi = static_cast<int>(files_.size());
-    auto claim = [&](std::uint32_t e) {
+    auto take = [&](std::uint32_t e, const std::array<std::int32_t, 4>& fn) {
       if (cell_file_[e] >= 0 && cell_file_[e] != fi)
         throw InputError(p, fmt::format("element {} is also under the pressure of {}: pool sub-meshes must not overlap",
                                         model.tet_tags[e], files_[cell_file_[e]]->reader->path()));
-      std::array<std::int32_t, 4> fn;
-      for (int k = 0; k < 4; ++k) {
-        fn[k] = file_node[model.tets[e][k]];
-        if (fn[k] < 0)
-          throw InputError(p, fmt::format("element {} lacks node {} in the file", model.tet_tags[e],
-                                          mesh.node_tags[model.tets[e][k]]));
-      }
       cell_file_[e] = fi;
       cell_nodes_[e] = fn;
     };
     const auto cell_tags = f->reader->cell_tags();
-    if (!cell_tags.empty()) {
+    const auto file_tets = f->reader->cells(ElementType::Tetrahedron);
+    if (!cell_tags.empty() && file_tets.size() == 4 * cell_tags.size()) {
+      // The file's own cells give each element's corners, so a mesh whose fault nodes were split
+      // after the flow sub-mesh was cut (ugs-faultinsert) gets the pressure of the parent nodes.
+      const auto xyz = f->reader->coordinates();
+      std::vector<char> is_twin(mesh.num_nodes(), 0);
       std::size_t missing = 0;
       std::uint64_t first_missing = 0;
-      for (auto t : cell_tags) {
-        auto it = tet_of_tag.find(t);
+      for (std::size_t c = 0; c < cell_tags.size(); ++c) {
+        auto it = tet_of_tag.find(cell_tags[c]);
         if (it == tet_of_tag.end()) {
-          if (!missing++) first_missing = t;
+          if (!missing++) first_missing = cell_tags[c];
           continue;
         }
-        claim(it->second);
+        const std::uint32_t e = it->second;
+        std::array<std::int32_t, 4> fn;
+        for (int k = 0; k < 4; ++k) {
+          const std::uint32_t m = model.tets[e][k];
+          fn[k] = -1;
+          for (int j = 0; j < 4 && fn[k] < 0; ++j)
+            if (xyz[file_tets[4 * c + j]] == mesh.nodes[m]) fn[k] = static_cast<std::int32_t>(file_tets[4 * c + j]);
+          if (fn[k] < 0)
+            throw InputError(p, fmt::format("element {}: node {} is at no corner of the file's cell {}: the pressure field "
+                                            "was computed on another mesh", model.tet_tags[e], mesh.node_tags[m], cell_tags[c]));
+          if (file_node[m] < 0 && !is_twin[m]) {
+            is_twin[m] = 1;
+            f->twins.emplace_back(m, static_cast<std::uint32_t>(fn[k]));
+          }
+        }
+        take(e, fn);
       }
       if (missing)
         throw InputError(p, fmt::format("element tag {} is not a tetrahedron of the mesh ({} of {} cell tags unknown)",
@@ -97,7 +113,8 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
     } else {
       for (std::uint32_t e = 0; e < model.tets.size(); ++e) {
         const auto& t = model.tets[e];
-        if (file_node[t[0]] >= 0 && file_node[t[1]] >= 0 && file_node[t[2]] >= 0 && file_node[t[3]] >= 0) claim(e);
+        if (file_node[t[0]] >= 0 && file_node[t[1]] >= 0 && file_node[t[2]] >= 0 && file_node[t[3]] >= 0)
+          take(e, {file_node[t[0]], file_node[t[1]], file_node[t[2]], file_node[t[3]]});
       }
     }
     const auto& st = f->reader->steps();
@@ -168,6 +185,7 @@ std::vector<double> PressureHistory::node_dp(double time) {
   for (auto& f : files_) {
     const auto v = file_values(*f, time);
     for (std::size_t i = 0; i < v.size(); ++i) dp[f->mesh_index[i]] += v[i];
+    for (const auto& [m, i] : f->twins) dp[m] += v[i];
   }
   return dp;
 }

@@ -241,9 +241,10 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
       broadcast(comm, saved);
       throw ComputeError(rep.failure + saved);
     }
-    log(1, fmt::format("{}: {} Newton iteration{}, {} linear iterations, {} sub-step{}, {:.2f} s", label, rep.newton_iterations,
+    log(1, fmt::format("{}: {} Newton iteration{}, {} linear iterations, {} sub-step{}, {:.2f} s{}", label, rep.newton_iterations,
                        rep.newton_iterations == 1 ? "" : "s", rep.linear_iterations, rep.substeps, rep.substeps == 1 ? "" : "s",
-                       rep.seconds));
+                       rep.seconds,
+                       rep.off_branch > 0 ? fmt::format(" (held elements off their branch: {:.1e})", rep.off_branch) : ""));
     // Outputs.
     const auto to = Clock::now();
     const std::vector<double> u = solver.gather_displacement();

@@ -23,7 +23,7 @@ using fem::Vec6;
 using fem::ZZ;
 
 struct Events {
-  PetscLogEvent residual = 0, assembly = 0, gather = 0;
+  PetscLogEvent residual = 0, assembly = 0, gather = 0, predictor = 0;
 };
 
 const Events& events() {
@@ -34,6 +34,7 @@ const Events& events() {
     PetscLogEventRegister("UgsResidual", id, &e.residual);
     PetscLogEventRegister("UgsAssembly", id, &e.assembly);
     PetscLogEventRegister("UgsGather", id, &e.gather);
+    PetscLogEventRegister("UgsPredictor", id, &e.predictor);
     return e;
   }();
   return ev;
@@ -86,9 +87,15 @@ struct MechanicsSolver::Impl {
   std::vector<Vec6> trial_eps;
   std::vector<std::int8_t> guess;
   std::vector<std::int8_t> last_ddp;   // sign of the element's last pressure change
-  std::vector<std::int8_t> j_sign;     // sign of J at the last Newton iterate
-  std::vector<std::uint8_t> flips, locked;
+  // The knee of the law (hypoplastic.hpp): elements that change branch back and forth are held
+  // on one branch for the rest of the (sub-)step; the convergence test checks the held branches.
+  std::vector<std::int8_t> piece;      // phase at the last Newton iterate (0: none yet)
+  std::vector<std::uint8_t> flips;
+  std::vector<fem::Hold> hold;
+  std::vector<std::int8_t> hold_dir;   // direction the element was held with (inversion stress)
   std::vector<fem::Mat6> assembled_Dt;
+  std::vector<std::int8_t> assembled_phase, pc_phase;  // branch in the matrix / in the matrix of the last PC setup
+  long long n_hyp_global = 0;
   bool saturated = false;
   bool has_hyp = false;                // some rank has hypo-plastic elements (the problem is nonlinear)
 
@@ -102,6 +109,12 @@ struct MechanicsSolver::Impl {
   std::vector<PetscInt> rowptr, cols;  // scalar CSR of the owned rows (global columns)
   std::vector<double> vals_lin, vals, diag_scale;
   bool have_lin = false, mat_created = false, mat_changed = false;
+  // Incremental assembly (iterative solvers): an element's stiffness is updated when its tangent
+  // moved by more than kTangentChange (relative, largest entry); a full assembly every
+  // kFullAssemblyEvery updates.
+  static constexpr double kTangentChange = 5e-3;
+  static constexpr int kFullAssemblyEvery = 100;
+  int updates_since_full = 0;
   Mat A = nullptr, P = nullptr;
   PetscInt user_maxit_ = -1;
   Vec u = nullptr, u_save = nullptr, u_step = nullptr, r = nullptr, du = nullptr;
@@ -165,10 +178,17 @@ struct MechanicsSolver::Impl {
     trial_eps.resize(nh);
     guess.assign(nh, +1);
     last_ddp.assign(nh, -1);  // the geostatic state ends a virgin compression
-    j_sign.assign(nh, 0);
+    piece.assign(nh, 0);
     flips.assign(nh, 0);
-    locked.assign(nh, 0);
+    hold.assign(nh, fem::Hold::None);
+    hold_dir.assign(nh, +1);
     assembled_Dt.resize(nh);
+    assembled_phase.assign(nh, -1);
+    pc_phase.assign(nh, -1);
+    {
+      long long mine_h = static_cast<long long>(nh);
+      MPI_Allreduce(&mine_h, &n_hyp_global, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
+    }
     for (std::size_t h = 0; h < nh; ++h) {
       const int c = hyp_cells[h];
       committed[h].hypo = fem::HypoState::virgin(s0[c]);
@@ -268,7 +288,11 @@ struct MechanicsSolver::Impl {
                              {"-pc_hypre_boomeramg_interp_type", "ext+i"},
                              {"-pc_hypre_boomeramg_P_max", "4"},
                              {"-pc_hypre_boomeramg_agg_nl", "1"},
-                             {"-pc_hypre_boomeramg_strong_threshold", "0.5"}});
+                             {"-pc_hypre_boomeramg_strong_threshold", "0.5"},
+                             // One forward Gauss-Seidel sweep down, one backward up: the cycle stays
+                             // symmetric (CG) at half the smoothing work of symmetric sweeps both ways.
+                             {"-pc_hypre_boomeramg_relax_type_down", "SOR/Jacobi"},
+                             {"-pc_hypre_boomeramg_relax_type_up", "backward-SOR/Jacobi"}});
         break;
       }
       case LinearSolver::Mumps:
@@ -357,7 +381,8 @@ struct MechanicsSolver::Impl {
       if (h < 0) {
         ds = elastic_stress(c, eps);
       } else {
-        trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], committed[h], start_sigma(h), eps, guess[h], locked[h]);
+        trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], committed[h], start_sigma(h), eps,
+                                    hold[h] == fem::Hold::None ? guess[h] : hold_dir[h], hold[h]);
         trial_eps[h] = eps;
         ds = trial[h].dsig;
         sat = sat || trial[h].saturated;
@@ -433,18 +458,44 @@ struct MechanicsSolver::Impl {
       }
       have_lin = true;
     }
-    for (std::size_t h = 0; h < hyp_cells.size() && !changed; ++h)
-      if (std::memcmp(trial[h].Dt.data(), assembled_Dt[h].data(), sizeof(fem::Mat6)) != 0) changed = true;
-    int mine = changed ? 1 : 0, any = 0;
+    // With an iterative solver only the elements whose tangent changed materially are updated
+    // (their stiffness difference is added): the matrix is a quasi-Newton tangent anyway, and
+    // most elements change by little between iterations. A full assembly every
+    // kFullAssemblyEvery updates keeps the sums fresh. Direct solvers take the exact tangent
+    // every time (a restart then reproduces the uninterrupted run to round-off).
+    const bool full = changed || !iterative() || updates_since_full >= kFullAssemblyEvery;
+    std::vector<std::int32_t> stale;
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+      if (std::memcmp(tangent(h).data(), assembled_Dt[h].data(), sizeof(fem::Mat6)) == 0) continue;
+      if (full) {
+        changed = true;
+        break;
+      }
+      if (relative_change(tangent(h), assembled_Dt[h]) > kTangentChange) stale.push_back(static_cast<std::int32_t>(h));
+    }
+    int mine = changed || !stale.empty() ? 1 : 0, any = 0;
     MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
     if (!any) return;
     PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
-    vals = vals_lin;
-    for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-      scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], trial[h].Dt), false);
-      assembled_Dt[h] = trial[h].Dt;
+    if (full) {
+      vals = vals_lin;
+      for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+        scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], tangent(h)), false);
+        assembled_Dt[h] = tangent(h);
+        assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
+      }
+      set_constrained_diagonal(vals);  // (scatter never touches prescribed rows or columns)
+      updates_since_full = 0;
+    } else {
+      for (const auto h : stale) {
+        fem::Mat6 dD;
+        for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembled_Dt[h][i];
+        scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], dD), false);
+        assembled_Dt[h] = tangent(h);
+        assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
+      }
+      ++updates_since_full;
     }
-    set_constrained_diagonal(vals);
     upload();
     if (!has_hyp) {
       // The matrix can never change: the assembly arrays are not needed again.
@@ -453,6 +504,14 @@ struct MechanicsSolver::Impl {
       std::vector<PetscInt>().swap(cols);
     }
     PetscLogEventEnd(events().assembly, 0, 0, 0, 0);
+  }
+
+  const fem::Mat6& tangent(std::size_t h) const { return trial[h].Dt; }
+
+  static double relative_change(const fem::Mat6& a, const fem::Mat6& b) {
+    double d = 0, n = 0;
+    for (int i = 0; i < 36; ++i) d = std::max(d, std::abs(a[i] - b[i])), n = std::max(n, std::abs(b[i]));
+    return n > 0 ? d / n : (d > 0 ? 1.0 : 0.0);
   }
 
   // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
@@ -527,6 +586,7 @@ struct MechanicsSolver::Impl {
 
   void rebuild_pc() {
     if (pc_valid) refresh_basis();
+    pc_phase = assembled_phase;
     if (separate_p()) {
       if (!P) UGS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &P));
       else UGS_PETSC(MatCopy(A, P, SAME_NONZERO_PATTERN));
@@ -566,7 +626,7 @@ struct MechanicsSolver::Impl {
     if (!pc_valid) rebuild_pc();
     if (mat_changed) {
       const bool reuse = pc_valid && iterative() && opt.reuse_preconditioner &&
-                         last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0);
+                         last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0) && !branches_moved();
       if (reuse) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
       else rebuild_pc();
       fresh = !reuse;
@@ -601,6 +661,16 @@ struct MechanicsSolver::Impl {
     return s;
   }
 
+  // True when many hypo-plastic elements changed branch since the preconditioner was built: their
+  // stiffness jumped by c_R, and a new setup (a few V-cycles) costs less than the iterations a stale
+  // hierarchy needs.
+  bool branches_moved() const {
+    long long mine = 0, all = 0;
+    for (std::size_t h = 0; h < assembled_phase.size(); ++h) mine += assembled_phase[h] != pc_phase[h];
+    MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
+    return static_cast<double>(all) > 0.005 * static_cast<double>(n_hyp_global);
+  }
+
   // ---- predictor ------------------------------------------------------------------------------
   // The increments of earlier steps span most of a new one (the seasonal cycles repeat and the
   // flow fields are smooth in time): the first Newton correction starts from the Galerkin
@@ -622,6 +692,7 @@ struct MechanicsSolver::Impl {
   void refresh_basis() {
     const int m = static_cast<int>(basis.size());
     if (m == 0) return;
+    PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
     for (int j = 0; j < m; ++j) UGS_PETSC(MatMult(A, basis[j], abasis[j]));
     Eigen::MatrixXd G(m, m);
     std::vector<PetscScalar> dots(m);
@@ -652,6 +723,7 @@ struct MechanicsSolver::Impl {
     for (Vec& v : abasis) UGS_PETSC(VecDestroy(&v));
     basis = std::move(nb);
     abasis = std::move(nab);
+    PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
   }
 
   // Adds the increment u - base of a converged (sub-)step to the basis, A-orthogonalized against it
@@ -712,9 +784,9 @@ struct MechanicsSolver::Impl {
       const double d = dp_target[hyp_cells[h]] - dp_cell[hyp_cells[h]];
       const int sd = d < 0 ? -1 : d > 0 ? +1 : 0, dir = committed[h].hypo.direction;
       guess[h] = static_cast<std::int8_t>(sd != 0 && sd != last_ddp[h] ? -dir : dir);
-      j_sign[h] = 0;
+      piece[h] = 0;
       flips[h] = 0;
-      locked[h] = 0;
+      hold[h] = fem::Hold::None;
     }
     UGS_PETSC(VecCopy(u, u_save));
     rep.residuals.clear();
@@ -763,6 +835,9 @@ struct MechanicsSolver::Impl {
       for (std::size_t h = 0; h < hyp_cells.size(); ++h) before[h] = static_cast<int>(trial[h].phase);
       rk = residual();
       track_branches();
+      long long moved = 0, moved_all = 0;
+      for (std::size_t h = 0; h < hyp_cells.size(); ++h) moved += before[h] != static_cast<int>(trial[h].phase);
+      MPI_Allreduce(&moved, &moved_all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
       if (std::getenv("UGS_DEBUG")) {
         int nflip = 0, virgin = 0, unl = 0, rel = 0;
         for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
@@ -772,8 +847,8 @@ struct MechanicsSolver::Impl {
           rel += trial[h].phase == fem::LoadingPhase::Reloading;
         }
         int nlock = 0;
-        for (auto l : locked) nlock += l;
-        std::fprintf(stderr, "  it %d rtol %.1e its %d r %.3e flips %d (virgin %d unloading %d reloading %d) locked %d\n", k,
+        for (auto l : hold) nlock += l != fem::Hold::None;
+        std::fprintf(stderr, "  it %d rtol %.1e its %d r %.3e flips %d (virgin %d unloading %d reloading %d) held %d\n", k,
                      rtol, s.iterations, rk / r0, nflip, virgin, unl, rel, nlock);
       }
       rep.residuals.push_back(rk / r0);
@@ -781,7 +856,10 @@ struct MechanicsSolver::Impl {
         why = "the residual is not finite";
         return false;
       }
-      if (rk <= opt.tolerance * r0 && (!coupling || coupling->settled())) return true;
+      if (rk <= opt.tolerance * r0 && (!coupling || coupling->settled())) {
+        rep.off_branch = std::max(rep.off_branch, held_off_branch() / r0);
+        return true;
+      }
       if (rk > 1e4 * r0) {
         why = "Newton diverged";
         return false;
@@ -791,6 +869,9 @@ struct MechanicsSolver::Impl {
         if (!why.empty()) return false;
       }
       if (has_hyp || coupling) eta = std::min(0.1, 0.9 * (rk / rprev) * (rk / rprev));
+      // While elements still change branch the next residual is set by them, not by the accuracy
+      // of the linear solve: a sharper solve would be wasted.
+      if (moved_all > 0) eta = std::max(eta, 1e-2);
     }
     int sat = saturated ? 1 : 0, any_sat = 0;
     MPI_Allreduce(&sat, &any_sat, 1, MPI_INT, MPI_MAX, lm.comm);
@@ -800,15 +881,49 @@ struct MechanicsSolver::Impl {
     return false;
   }
 
-  // An element whose vertical stress increment changes sign twice within a step sits at J = 0,
-  // where the law's stiffness jumps: lock it on the unloading/reloading branch (hypoplastic.hpp).
+  // An element that changes branch twice within a (sub-)step sits at the knee, where its stiffness
+  // jumps by c_R (at J = 0 on the virgin curve even its lateral stress jumps): Newton would cycle.
+  // It is held on the unloading/reloading branch (the stiffer one: Newton with the softer tangent
+  // overshoots); the residual is then smooth (hypoplastic.hpp).
   void track_branches() {
     for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-      const double J = trial[h].J;
-      const std::int8_t s = J > 0 ? 1 : J < 0 ? -1 : 0;
-      if (s != 0 && j_sign[h] != 0 && s != j_sign[h] && ++flips[h] >= 2) locked[h] = 1;
-      if (s != 0) j_sign[h] = s;
+      const auto p = static_cast<std::int8_t>(trial[h].phase);
+      if (piece[h] != 0 && p != piece[h] && ++flips[h] >= 2 && hold[h] == fem::Hold::None) {
+        hold[h] = fem::Hold::UnloadReload;
+        hold_dir[h] = static_cast<std::int8_t>(trial[h].J > 0 ? +1 : trial[h].J < 0 ? -1 : guess[h]);
+      }
+      piece[h] = p;
     }
+  }
+
+  // The consistency of the held branches at a converged iterate. A held element whose J ended on
+  // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
+  // after a vertical strain change of delta (the stress moves by delta Dhat e_z / c_t): its
+  // residual is within ||V B^T delta Dhat e_z / c_t|| of the residual of a state that obeys the
+  // law everywhere (at the knee the response is set-valued: either branch's stiffness is
+  // admissible). Returns the sum of these bounds over the inconsistent elements (all ranks).
+  double held_off_branch() {
+    double mine = 0;
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+      if (hold[h] == fem::Hold::None) continue;
+      const double delta = trial[h].J - trial[h].J_knee;
+      const bool wrong = hold[h] == fem::Hold::Virgin ? delta < 0 : delta > 0;
+      if (!wrong) continue;
+      const int c = hyp_cells[h];
+      if (lm.cell_owned[c]) {
+        const fem::Material& m = lm.materials[lm.cell_material[c]];
+        Vec6 ds;
+        for (int i = 0; i < 6; ++i) ds[i] = delta * m.Dhat[6 * i + ZZ] * 1e6 / trial[h].c_tangent;
+        double fe[12] = {};
+        fem::tet4_add_internal_force(geo[c], ds, fe);
+        double n2 = 0;
+        for (double f : fe) n2 += f * f;
+        mine += std::sqrt(n2);
+      }
+    }
+    double all = 0;
+    MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, lm.comm);
+    return all;
   }
 
   void commit(const std::vector<double>& dp_target) {

@@ -52,9 +52,11 @@ struct FaultCutOptions {
   // neighbour's plane by angle x distance (1e-4 m for nearly collinear trace segments), and a cut
   // next to such a node splits all its edges that close to it: coincident nodes, zero volumes.
   double tolerance = 0;
-  // Before each panel's cut, a node closer to its plane than snap * its shortest edge is moved onto
-  // it (not nodes on triangles, material interfaces or earlier panels, and only when its tetrahedra
-  // keep at least half their smallest dihedral angle): fewer slivers. 0 = never.
+  // Before each cut (a panel's plane, each of its limits), where an edge crosses the plane within
+  // snap * its length of a node, the node is moved onto the plane within the surfaces it lies on
+  // (triangle groups, material interfaces, earlier panels; docs/dipping-faults.md), when its
+  // tetrahedra stay positive and keep at least half their smallest dihedral angle: fewer slivers.
+  // 0 = never.
   double snap = 0.2;
 };
 
@@ -74,7 +76,8 @@ struct FaultCutSummary {
   std::size_t nodes_before = 0, nodes_after = 0;
   std::size_t tetrahedra_before = 0, tetrahedra_after = 0;
   std::size_t untorn = 0;
-  std::size_t snapped = 0;        // nodes moved onto a panel's plane         // edges bisected so that no tetrahedron has four nodes on one fault
+  std::size_t snapped = 0;        // nodes moved onto a panel's plane or limit (edges bisected so
+                                  // that no tetrahedron has four nodes on one fault: untorn)
   double tolerance = 0;
 };
 

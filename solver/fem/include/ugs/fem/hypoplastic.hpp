@@ -46,6 +46,14 @@ struct HypoState {
 
 enum class LoadingPhase : int { Elastic = 0, Virgin = 1, Unloading = 2, Reloading = 3 };
 
+// A branch the solver holds an element on for the rest of a Newton solve (the law's response is
+// continuous, but its stiffness jumps by c_R at the knee J = J_knee between the unloading/reloading
+// and the virgin branch; at J = 0 on the virgin curve even the lateral stress jumps, because the
+// whole Dhat scales with 1/c). Held, the element follows the analytic continuation of that branch
+// through the knee, so the residual is smooth; the solver checks at convergence that the held
+// branch agrees with the side of the knee the element ended on (docs/mechanics.md).
+enum class Hold : int { None = 0, Virgin = 1, UnloadReload = 2 };
+
 struct HypoResult {
   double sigma1 = 0;     // MPa
   double c_secant = 0;   // 1/MPa: J / (sigma1 - sigma0)
@@ -53,15 +61,14 @@ struct HypoResult {
   HypoState state;       // the state after the step
   LoadingPhase phase = LoadingPhase::Virgin;
   bool saturated = false;  // J exceeds what the virgin law can absorb (sigma1 would be infinite)
+  double J_knee = 0;       // J at which the step passes from the unloading/reloading to the virgin branch
 };
 
 // Integrates from sigma0 with the state at the start of the step. When J == 0 the tangent of the
 // branch in `direction_guess` (+1 or -1) is returned (the first Newton iteration needs one).
-// `lock_ur` keeps the element on the unloading/reloading branch in both directions: the solver
-// sets it for an element whose vertical stress increment oscillates about zero within a step
-// (the law's stiffness jumps by c_R at J = 0, where the response is set-valued; the stiffer
-// branch is the admissible choice there and changes sigma_z by nothing).
+// `hold` keeps the element on one branch on both sides of the knee (Hold above); with
+// Hold::UnloadReload, `direction_guess` also fixes the inversion stress (sigma-inversion rule).
 HypoResult hypo_integrate(const HypoParams& p, const HypoState& start, double sigma0, double J, int direction_guess,
-                          bool lock_ur = false);
+                          Hold hold = Hold::None);
 
 }  // namespace ugs::fem

@@ -55,12 +55,13 @@ struct PointUpdate {
   HypoState hypo;    // the state if this trial is accepted
   bool saturated = false;
   double J = 0;
+  double J_knee = 0; // J where the element passes from the unloading/reloading to the virgin branch
 };
 
 // Hypo-plastic update from `start` (whose total effective vertical stress magnitude is s_start
 // [MPa]) to the trial strain `eps`.
-// `lock_ur`: see hypo_integrate. PointUpdate::J is the vertical strain magnitude of the step.
+// `hold`: see hypo_integrate. PointUpdate::J is the vertical strain magnitude of the step.
 PointUpdate hypo_update(const Material& m, const PointState& start, double s_start_mpa, const Vec6& eps, int direction_guess,
-                        bool lock_ur = false);
+                        Hold hold = Hold::None);
 
 }  // namespace ugs::fem
