@@ -14,7 +14,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
-#include "gdal_util.hpp"
+#include "ugs/meshing/gdal_util.hpp"
 
 namespace ugs::geo {
 

@@ -7,7 +7,7 @@
 #include <ogrsf_frmts.h>
 #include <fmt/format.h>
 
-#include "gdal_util.hpp"
+#include "ugs/meshing/gdal_util.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/plan_mesh.hpp"
 

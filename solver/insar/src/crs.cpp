@@ -14,39 +14,6 @@
 
 namespace ugs::insar {
 
-void gdal_register() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-GdalQuiet::GdalQuiet() {
-  gdal_register();
-  CPLPushErrorHandler(CPLQuietErrorHandler);
-  CPLErrorReset();
-}
-GdalQuiet::~GdalQuiet() { CPLPopErrorHandler(); }
-
-std::string gdal_last_error() {
-  const char* m = CPLGetLastErrorMsg();
-  return m && *m ? std::string(m) : std::string("no reason given by GDAL");
-}
-
-OGRSpatialReference srs_of(const std::string& wkt) {
-  OGRSpatialReference s;
-  s.importFromWkt(wkt.c_str());
-  s.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  return s;
-}
-
-std::string wkt_of_srs(const OGRSpatialReference& s) {
-  char* w = nullptr;
-  const char* options[] = {"FORMAT=WKT2_2018", nullptr};
-  s.exportToWkt(&w, options);
-  std::string r = w ? w : "";
-  CPLFree(w);
-  return r;
-}
-
 std::string any_crs_wkt(const std::string& user, const std::string& where) {
   GdalQuiet quiet;
   OGRSpatialReference s;

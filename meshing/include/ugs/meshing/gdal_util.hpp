@@ -1,4 +1,4 @@
-// GDAL/OGR helpers shared by the meshing sources (not installed): quiet error handling, CRS
+// GDAL/OGR helpers shared by ugs_meshing and ugs_insar: quiet error handling, CRS
 // conversions and dataset handles.
 #pragma once
 #include <memory>
