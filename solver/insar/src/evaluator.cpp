@@ -303,21 +303,18 @@ Evaluation Evaluator::run_one(const std::vector<double>& x) {
 std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double>>& xs, const std::string& phase) {
   std::vector<Evaluation> out(xs.size());
   // Points already evaluated in this run are answered from the history.
-  std::vector<std::size_t> todo;
+  std::vector<std::size_t> to_run;                          // indices into xs of the points to run
   std::unordered_map<std::string, std::size_t> first_of;  // entry -> index into xs of its first occurrence
   for (std::size_t i = 0; i < xs.size(); ++i) {
     const std::string name = entry_name(xs[i]);
-    bool done = false;
-    for (const auto& h : history_)
-      if (h.entry == name) {
-        out[i] = h;
-        out[i].cached = true;
-        out[i].seconds = 0;
-        done = true;
-        break;
-      }
-    if (done) continue;
-    if (first_of.emplace(name, i).second) todo.push_back(i);
+    const auto h = std::find_if(history_.begin(), history_.end(), [&](const Evaluation& e) { return e.entry == name; });
+    if (h != history_.end()) {
+      out[i] = *h;
+      out[i].cached = true;
+      out[i].seconds = 0;
+    } else if (first_of.emplace(name, i).second) {
+      to_run.push_back(i);
+    }
   }
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
@@ -325,20 +322,20 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
   auto worker = [&] {
     for (;;) {
       const std::size_t j = next++;
-      if (j >= todo.size()) return;
+      if (j >= to_run.size()) return;
       {
         std::lock_guard lock(fail_mutex);
         if (failure) return;
       }
       try {
-        out[todo[j]] = run_one(xs[todo[j]]);
+        out[to_run[j]] = run_one(xs[to_run[j]]);
       } catch (...) {
         std::lock_guard lock(fail_mutex);
         if (!failure) failure = std::current_exception();
       }
     }
   };
-  const std::size_t nthreads = std::min<std::size_t>(static_cast<std::size_t>(setup_.jobs), todo.size());
+  const std::size_t nthreads = std::min<std::size_t>(static_cast<std::size_t>(setup_.jobs), to_run.size());
   std::vector<std::thread> threads;
   for (std::size_t t = 1; t < nthreads; ++t) threads.emplace_back(worker);
   if (nthreads > 0) worker();
