@@ -17,6 +17,7 @@
 #include "ugs/mechanics/model.hpp"
 #include "ugs/mechanics/pressure.hpp"
 #include "ugs/mechanics/solver.hpp"
+#include "ugs/mechanics/step_output.hpp"
 
 namespace ugs::contact {
 namespace {
@@ -333,34 +334,8 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
       }
       fault_note = fmt::format("max chi {:.3f} ({}), {} node pairs slipping, {} open", mc, worst, ns, no);
       R.faults->add(dates[i], times[i], ff, is_output[i]);
-      if (R.top) {
-        std::vector<double> v;
-        v.reserve(3 * R.model.top_nodes.size());
-        for (auto n : R.model.top_nodes)
-          for (int c = 0; c < 3; ++c) v.push_back(u[3 * n + c] * 1e3);
-        const Field f[] = {{"u_mm", 3, std::move(v)}};
-        R.top->add_step(dates[i], times[i], f);
-      }
-      if (R.top_csv)
-        for (auto n : R.model.top_nodes) {
-          R.top_csv->text(dates[i]).integer(static_cast<std::int64_t>(R.mesh->node_tags[n]));
-          R.top_csv->number(R.mesh->nodes[n][0], 3).number(R.mesh->nodes[n][1], 3);
-          R.top_csv->number(u[3 * n] * 1e3, 4).number(u[3 * n + 1] * 1e3, 4).number(u[3 * n + 2] * 1e3, 4).end_row();
-        }
-      if (is_output[i]) {
-        std::vector<Field> nf, cf;
-        if (R.fields.count("displacement")) nf.push_back({"u", 3, u});
-        if (R.fields.count("pressure")) nf.push_back({"dp", 1, R.history->node_dp(times[i])});
-        if (R.fields.count("strain")) cf.push_back({"strain", 6, std::move(cells.strain)});
-        if (R.fields.count("stress")) cf.push_back({"stress", 6, std::move(cells.stress)});
-        if (R.fields.count("stress_change")) cf.push_back({"stress_change", 6, std::move(cells.stress_change)});
-        if (R.fields.count("cm")) cf.push_back({"cM", 1, std::move(cells.cm)});
-        if (R.fields.count("state")) {
-          cf.push_back({"state", 1, std::move(cells.state)});
-          cf.push_back({"sigma_z_max", 1, std::move(cells.sigma_max)});
-        }
-        R.results->add_step(dates[i], times[i], nf, cf);
-      }
+      mech::write_top_surface(R.top.get(), R.top_csv.get(), *R.mesh, R.model, dates[i], times[i], u);
+      if (is_output[i]) mech::write_volume_fields(*R.results, R.fields, *R.history, dates[i], times[i], u, cells);
     });
     const auto& after = contact.stats();
     log(1, fmt::format("{}: {} Newton iteration{}, {} linear iterations, {} sub-step{}, {} contact state changes, {:.2f} s; {}",
