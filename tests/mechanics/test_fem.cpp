@@ -196,3 +196,51 @@ TEST(MaterialPoint, OedometricHypoplasticStepAndTangent) {
   EXPECT_NEAR(u.Dt[6 * ZZ + ZZ], 1e6 / cM(26), 1e-6 * 1e6 / cM(26));
 }
 
+
+// The tangent is the derivative of the stress for any strain increment, not only the oedometric
+// one: Newton converges quadratically only with it. A central difference of every column, on the
+// virgin branch, on the unloading branch and across the knee (unloading then past sigma_max).
+TEST(MaterialPoint, ConsistentTangentIsTheDerivativeForAnyStrain) {
+  Material m;
+  m.law = Law::Hypoplastic;
+  m.ratios = {0.3, 3.0, 0.2, 1.0};
+  m.hypo = {a, b, 3.0, 0.1, InversionRule::SigmaMax};
+  m.finalize();
+  const double ez = virgin(20, 23);
+  PointState below;  // unloaded to 18 MPa from a preconsolidation of 20 MPa
+  below.hypo = {20, 20, -1};
+  struct Case {
+    const char* what;
+    PointState st;
+    double s0, ezz;
+    bool linear_branch;  // c constant along the step (sigma-max rule, unloading): both forms exact
+  };
+  const Case cases[] = {{"virgin loading", PointState{{}, {}, HypoState::virgin(20)}, 20, -ez, false},
+                        {"unloading", PointState{{}, {}, HypoState::virgin(20)}, 20, 0.2 * ez, true},
+                        {"reloading past the knee", below, 18, -ez, false}};
+  for (const Case& c : cases) {
+    // Lateral and shear strains of the size of the vertical one: far from oedometric.
+    const Vec6 eps{0.4 * c.ezz, -0.3 * c.ezz, c.ezz, 0.2 * c.ezz, -0.1 * c.ezz, 0.3 * c.ezz};
+    const PointUpdate u = hypo_update(m, c.st, c.s0, eps, c.ezz < 0 ? +1 : -1);
+    const PointUpdate us = hypo_update(m, c.st, c.s0, eps, c.ezz < 0 ? +1 : -1, Hold::None, TangentForm::Symmetric);
+    double err = 0, err_sym = 0, scale = 0;
+    for (int j = 0; j < 6; ++j) {
+      const double h = 1e-7 * std::abs(c.ezz);
+      Vec6 ep = eps, em = eps;
+      ep[j] += h;
+      em[j] -= h;
+      const PointUpdate up = hypo_update(m, c.st, c.s0, ep, c.ezz < 0 ? +1 : -1);
+      const PointUpdate um = hypo_update(m, c.st, c.s0, em, c.ezz < 0 ? +1 : -1);
+      for (int i = 0; i < 6; ++i) {
+        const double fd = (up.dsig[i] - um.dsig[i]) / (2 * h);
+        err = std::max(err, std::abs(fd - u.Dt[6 * i + j]));
+        err_sym = std::max(err_sym, std::abs(fd - us.Dt[6 * i + j]));
+        scale = std::max(scale, std::abs(fd));
+      }
+    }
+    EXPECT_LT(err, 1e-6 * scale) << c.what;
+    // The symmetric form is off by the non-oedometric part of the rank-one term.
+    if (c.linear_branch) EXPECT_LT(err_sym, 1e-6 * scale) << c.what;
+    else EXPECT_GT(err_sym, 1e-3 * scale) << c.what;
+  }
+}

@@ -178,7 +178,9 @@ TEST(SolveTool, RestartReproducesAnUninterruptedRun) {
     EXPECT_EQ(first.steps().size(), 1u);   // 1960-03-01
     EXPECT_EQ(second.steps().size(), 1u);  // 1960-09-01
     EXPECT_EQ(second.steps()[0].date, full.steps().back().date);
-    const double tol = solver == "mumps" ? 1e-10 : 1e-6;
+    // Both pieces converge each step to the Newton tolerance (1e-8); MUMPS' factorization
+    // preconditions a Krylov solve too, so the restart agrees to about that tolerance.
+    const double tol = solver == "mumps" ? 1e-8 : 1e-6;
     EXPECT_LT(test::max_rel_diff(test::last_field(d / "full.h5", "u", false), test::last_field(d / "second.h5", "u", false)), tol)
         << solver;
     EXPECT_LT(test::max_rel_diff(test::last_field(d / "full.h5", "stress", true),

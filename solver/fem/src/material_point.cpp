@@ -27,7 +27,8 @@ Mat6 Material::elastic_D(double s0) const {
   return D;
 }
 
-PointUpdate hypo_update(const Material& m, const PointState& st, double s0, const Vec6& eps, int guess, Hold hold) {
+PointUpdate hypo_update(const Material& m, const PointState& st, double s0, const Vec6& eps, int guess, Hold hold,
+                        TangentForm form) {
   Vec6 de;
   for (int i = 0; i < 6; ++i) de[i] = eps[i] - st.eps[i];
   const Vec6 Dde = mat_vec(m.Dhat, de);
@@ -38,14 +39,32 @@ PointUpdate hypo_update(const Material& m, const PointState& st, double s0, cons
   u.J_knee = h.J_knee;
   const double inv_sec = 1e6 / h.c_secant, inv_tan = 1e6 / h.c_tangent;  // Pa
   for (int i = 0; i < 6; ++i) u.dsig[i] = st.dsig[i] + Dde[i] * inv_sec;
-  const double g = inv_tan - inv_sec;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) u.Dt[6 * i + j] = m.Dhat[6 * i + j] * inv_sec + g * m.Dhat[6 * i + ZZ] * m.Dhat[6 * j + ZZ];
+  // dsig = Dhat de / c_sec(J), J = -(Dhat de)_zz: d(1/c_sec)/dJ = (1/c_tan - 1/c_sec) / J, so the
+  // derivative adds the rank-one term -g/J (Dhat de) (x) Dhat_zz,: . It is not symmetric unless the
+  // strain increment is oedometric (Dhat de parallel to Dhat_:,zz, with Dhat_zz,zz = 1), which is
+  // the symmetric form's rank-one term g Dhat_:,zz (x) Dhat_zz,: . (g -> 0 as J -> 0 on a branch.)
   u.c_tangent = h.c_tangent;
+  u.c_secant = h.c_secant;
+  const double g = inv_tan - inv_sec;
+  if (form == TangentForm::Consistent && J != 0) {
+    const double k = -g / J;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) u.Dt[6 * i + j] = m.Dhat[6 * i + j] * inv_sec + k * Dde[i] * m.Dhat[6 * ZZ + j];
+  } else {
+    u.Dt = symmetric_tangent(m, u);
+  }
   u.phase = h.phase;
   u.hypo = h.state;
   u.saturated = h.saturated;
   return u;
+}
+
+Mat6 symmetric_tangent(const Material& m, const PointUpdate& u) {
+  const double inv_sec = 1e6 / u.c_secant, g = 1e6 / u.c_tangent - inv_sec;
+  Mat6 D;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) D[6 * i + j] = m.Dhat[6 * i + j] * inv_sec + g * m.Dhat[6 * i + ZZ] * m.Dhat[6 * j + ZZ];
+  return D;
 }
 
 }  // namespace ugs::fem

@@ -83,13 +83,13 @@ std::array<double, 144> tet4_stiffness(const Tet4& t, const Mat6& D) {
       for (int k = 0; k < 6; ++k) s += D[6 * i + k] * B[12 * k + j];
       DB[12 * i + j] = s;
     }
+  // D need not be symmetric (the consistent hypo-plastic tangent is not): every entry is formed.
   std::array<double, 144> K{};
   for (int i = 0; i < 12; ++i)
-    for (int j = i; j < 12; ++j) {
+    for (int j = 0; j < 12; ++j) {
       double s = 0;
       for (int k = 0; k < 6; ++k) s += B[12 * k + i] * DB[12 * k + j];
       K[12 * i + j] = v * s;
-      K[12 * j + i] = v * s;
     }
   return K;
 }

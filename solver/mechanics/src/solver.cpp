@@ -98,6 +98,10 @@ struct MechanicsSolver::Impl {
   long long n_hyp_global = 0;
   bool saturated = false;
   bool has_hyp = false;                // some rank has hypo-plastic elements (the problem is nonlinear)
+  // The consistent hypo-plastic tangent is not symmetric: the Krylov method is then GMRES and MUMPS
+  // factors LU. CHOLMOD (Cholesky only) factors the matrix of the symmetric form of the tangent
+  // (material_point.hpp; SPD, unlike the symmetric part of the consistent one at the knee).
+  bool nonsymmetric = false;
 
   // ---- loads ----------------------------------------------------------------------------------
   std::vector<double> dp_cell;         // pressure change of the current state, per local element
@@ -114,6 +118,7 @@ struct MechanicsSolver::Impl {
   // kFullAssemblyEvery updates.
   static constexpr double kTangentChange = 5e-3;
   static constexpr int kFullAssemblyEvery = 100;
+  static constexpr double kFactorIpd = 5.0;  // iterations per decade a kept factorization may need
   int updates_since_full = 0;
   Mat A = nullptr, P = nullptr;
   PetscInt user_maxit_ = -1;
@@ -139,7 +144,11 @@ struct MechanicsSolver::Impl {
     for (Vec& v : abasis) VecDestroy(&v);
   }
 
-  bool iterative() const { return opt.linear == LinearSolver::CgGamg || opt.linear == LinearSolver::CgHypre; }
+  // Every solver runs a Krylov method; with MUMPS or CHOLMOD its preconditioner is a factorization,
+  // which is kept across Newton iterations and steps while it still converges fast (a refactor
+  // costs tens of solves: docs/mechanics.md).
+  bool iterative() const { return true; }
+  bool factored() const { return opt.linear == LinearSolver::Mumps || opt.linear == LinearSolver::Cholmod; }
   bool owned_dof_fixed(int a, int c) const { return (lm.fixed[a] >> c) & 1; }
 
   // ---- setup ----------------------------------------------------------------------------------
@@ -171,6 +180,7 @@ struct MechanicsSolver::Impl {
     int mine = nh ? 1 : 0, any = 0;
     MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
     has_hyp = any != 0;
+    nonsymmetric = has_hyp;
     committed.resize(nh);
     committed_phase.assign(nh, fem::LoadingPhase::Virgin);
     committed_c.resize(nh);
@@ -260,23 +270,35 @@ struct MechanicsSolver::Impl {
     }
   }
 
+  // CG for the SPD operator; right-preconditioned GMRES for the consistent hypo-plastic tangent
+  // (both stop on the true residual, so the Newton forcing terms mean the same thing).
+  void set_krylov() {
+    if (nonsymmetric) {
+      UGS_PETSC(KSPSetType(ksp, KSPGMRES));
+      UGS_PETSC(KSPGMRESSetRestart(ksp, 100));
+      UGS_PETSC(KSPGMRESSetOrthogonalization(ksp, KSPGMRESModifiedGramSchmidtOrthogonalization));
+      UGS_PETSC(KSPSetPCSide(ksp, PC_RIGHT));
+    } else {
+      UGS_PETSC(KSPSetType(ksp, KSPCG));
+    }
+    UGS_PETSC(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+  }
+
   void setup_ksp() {
     UGS_PETSC(KSPCreate(lm.comm, &ksp));
     PC pc;
     UGS_PETSC(KSPGetPC(ksp, &pc));
     switch (opt.linear) {
       case LinearSolver::CgGamg:
-        UGS_PETSC(KSPSetType(ksp, KSPCG));
-        UGS_PETSC(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+        set_krylov();
         UGS_PETSC(PCSetType(pc, PCGAMG));
         UGS_PETSC(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE));
         // Smoothed aggregation with the rigid-body near-null space (set on the matrix); CG
-        // eigenvalue estimates for the Chebyshev smoothers (the operator is SPD).
-        set_default_options({{"-mg_levels_esteig_ksp_type", "cg"}});
+        // eigenvalue estimates for the Chebyshev smoothers when the operator is SPD.
+        set_default_options({{"-mg_levels_esteig_ksp_type", nonsymmetric ? "gmres" : "cg"}});
         break;
       case LinearSolver::CgHypre: {
-        UGS_PETSC(KSPSetType(ksp, KSPCG));
-        UGS_PETSC(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED));
+        set_krylov();
         UGS_PETSC(PCSetType(pc, PCHYPRE));
         UGS_PETSC(PCHYPRESetType(pc, "boomeramg"));
         // BoomerAMG for 3D elasticity on layered meshes (docs/mechanics.md, measured on the
@@ -296,13 +318,13 @@ struct MechanicsSolver::Impl {
         break;
       }
       case LinearSolver::Mumps:
-        UGS_PETSC(KSPSetType(ksp, KSPPREONLY));
-        UGS_PETSC(PCSetType(pc, PCCHOLESKY));
+        set_krylov();
+        UGS_PETSC(PCSetType(pc, nonsymmetric ? PCLU : PCCHOLESKY));
         UGS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
         break;
       case LinearSolver::Cholmod:
         if (lm.size > 1) throw InputError("--solver", "cholmod runs on one process; use mumps under mpirun");
-        UGS_PETSC(KSPSetType(ksp, KSPPREONLY));
+        set_krylov();
         UGS_PETSC(PCSetType(pc, PCCHOLESKY));
         UGS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERCHOLMOD));
         break;
@@ -382,7 +404,8 @@ struct MechanicsSolver::Impl {
         ds = elastic_stress(c, eps);
       } else {
         trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], committed[h], start_sigma(h), eps,
-                                    hold[h] == fem::Hold::None ? guess[h] : hold_dir[h], hold[h]);
+                                    hold[h] == fem::Hold::None ? guess[h] : hold_dir[h], hold[h],
+                                    nonsymmetric ? fem::TangentForm::Consistent : fem::TangentForm::Symmetric);
         trial_eps[h] = eps;
         ds = trial[h].dsig;
         sat = sat || trial[h].saturated;
@@ -458,12 +481,10 @@ struct MechanicsSolver::Impl {
       }
       have_lin = true;
     }
-    // With an iterative solver only the elements whose tangent changed materially are updated
-    // (their stiffness difference is added): the matrix is a quasi-Newton tangent anyway, and
-    // most elements change by little between iterations. A full assembly every
-    // kFullAssemblyEvery updates keeps the sums fresh. Direct solvers take the exact tangent
-    // every time (a restart then reproduces the uninterrupted run to round-off).
-    const bool full = changed || !iterative() || updates_since_full >= kFullAssemblyEvery;
+    // Only the elements whose tangent changed materially are updated (their stiffness difference
+    // is added): the matrix is a quasi-Newton tangent anyway, and most elements change by little
+    // between iterations. A full assembly every kFullAssemblyEvery updates keeps the sums fresh.
+    const bool full = changed || updates_since_full >= kFullAssemblyEvery;
     std::vector<std::int32_t> stale;
     for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
       if (std::memcmp(tangent(h).data(), assembled_Dt[h].data(), sizeof(fem::Mat6)) == 0) continue;
@@ -541,9 +562,11 @@ struct MechanicsSolver::Impl {
       }
       UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
       UGS_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
-      UGS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
-      UGS_PETSC(MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
-      UGS_PETSC(MatSetOption(A, MAT_SPD, PETSC_TRUE));
+      if (!nonsymmetric) {
+        UGS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+        UGS_PETSC(MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+        UGS_PETSC(MatSetOption(A, MAT_SPD, PETSC_TRUE));
+      }
       // Rigid-body modes from the owned node coordinates: the near-null space of elasticity.
       Vec xyz;
       UGS_PETSC(VecCreateMPI(lm.comm, m, PETSC_DETERMINE, &xyz));
@@ -582,13 +605,40 @@ struct MechanicsSolver::Impl {
   // GAMG's fine-level smoother runs on the preconditioning matrix: when A changes (hypo-plastic
   // branches) and the hierarchy is reused, it must see the matrix the hierarchy was built from, or
   // its Chebyshev bounds no longer hold. So GAMG gets a frozen copy P; hypre copies A itself.
-  bool separate_p() const { return opt.linear == LinearSolver::CgGamg && has_hyp; }
+  bool separate_p() const {
+    return (opt.linear == LinearSolver::CgGamg && has_hyp) || (opt.linear == LinearSolver::Cholmod && nonsymmetric);
+  }
+
+  // P from the symmetric form of every element's tangent (CHOLMOD's matrix).
+  void assemble_symmetric_p() {
+    std::vector<double> pv = vals_lin;
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h)
+      scatter(pv, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], fem::symmetric_tangent(lm.materials[lm.cell_material[hyp_cells[h]]], trial[h])), false);
+    set_constrained_diagonal(pv);
+    if (!P) {
+      UGS_PETSC(MatCreate(lm.comm, &P));
+      const PetscInt m = 3 * lm.n_owned;
+      UGS_PETSC(MatSetSizes(P, m, m, PETSC_DETERMINE, PETSC_DETERMINE));
+      UGS_PETSC(MatSetType(P, MATSEQAIJ));
+      UGS_PETSC(MatSeqAIJSetPreallocationCSR(P, rowptr.data(), cols.data(), pv.data()));
+      UGS_PETSC(MatSetOption(P, MAT_SYMMETRIC, PETSC_TRUE));
+      UGS_PETSC(MatSetOption(P, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+      UGS_PETSC(MatSetOption(P, MAT_SPD, PETSC_TRUE));
+    } else {
+      for (PetscInt i = 0; i < 3 * lm.n_owned; ++i)
+        UGS_PETSC(MatSetValues(P, 1, &i, rowptr[i + 1] - rowptr[i], cols.data() + rowptr[i], pv.data() + rowptr[i],
+                               INSERT_VALUES));
+      UGS_PETSC(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
+      UGS_PETSC(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
+    }
+  }
 
   void rebuild_pc() {
     if (pc_valid) refresh_basis();
     pc_phase = assembled_phase;
     if (separate_p()) {
-      if (!P) UGS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &P));
+      if (opt.linear == LinearSolver::Cholmod) assemble_symmetric_p();
+      else if (!P) UGS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &P));
       else UGS_PETSC(MatCopy(A, P, SAME_NONZERO_PATTERN));
       UGS_PETSC(KSPSetOperators(ksp, A, P));
     }
@@ -625,8 +675,12 @@ struct MechanicsSolver::Impl {
     bool fresh = !pc_valid;
     if (!pc_valid) rebuild_pc();
     if (mat_changed) {
-      const bool reuse = pc_valid && iterative() && opt.reuse_preconditioner &&
-                         last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0) && !branches_moved();
+      // A factorization is kept while a solve needs fewer than kFactorIpd iterations per decade
+      // (a refactor costs tens of solves); a multigrid hierarchy while it stays near its first rate
+      // and few elements changed branch (a setup costs a few cycles).
+      const bool keep = factored() ? last_ipd <= kFactorIpd
+                                   : last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0) && !branches_moved();
+      const bool reuse = pc_valid && opt.reuse_preconditioner && keep;
       if (reuse) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
       else rebuild_pc();
       fresh = !reuse;
@@ -634,7 +688,9 @@ struct MechanicsSolver::Impl {
     }
     // A reused preconditioner gets a budget; if it cannot make it, rebuild and solve again.
     const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
-    const PetscInt budget = fresh || !iterative() ? -1 : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
+    const PetscInt budget = fresh ? -1
+                            : factored() ? static_cast<PetscInt>(std::ceil(2 * kFactorIpd * decades))
+                                         : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
     SolveResult s = solve_once(rtol, guess, budget);
     int its_total = s.iterations;
     if (iterative() && !fresh && s.reason < 0) {

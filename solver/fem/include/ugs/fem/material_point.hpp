@@ -51,6 +51,7 @@ struct PointUpdate {
   Vec6 dsig{};       // effective stress change from the initial state at the trial strain [Pa]
   Mat6 Dt{};         // tangent [Pa]
   double c_tangent;  // 1/MPa, at the end of the step
+  double c_secant;   // 1/MPa, over the step
   LoadingPhase phase;
   HypoState hypo;    // the state if this trial is accepted
   bool saturated = false;
@@ -58,10 +59,19 @@ struct PointUpdate {
   double J_knee = 0; // J where the element passes from the unloading/reloading to the virgin branch
 };
 
+// The tangent of the hypo-plastic update: Consistent is the exact derivative of the stress (not
+// symmetric: Newton converges quadratically, the linear solver must be GMRES or LU); Symmetric
+// keeps only the oedometric part of the rank-one term (exact for oedometric strain; a quasi-Newton
+// elsewhere, for Cholesky solvers).
+enum class TangentForm { Consistent, Symmetric };
+
 // Hypo-plastic update from `start` (whose total effective vertical stress magnitude is s_start
 // [MPa]) to the trial strain `eps`.
 // `hold`: see hypo_integrate. PointUpdate::J is the vertical strain magnitude of the step.
 PointUpdate hypo_update(const Material& m, const PointState& start, double s_start_mpa, const Vec6& eps, int direction_guess,
-                        Hold hold = Hold::None);
+                        Hold hold = Hold::None, TangentForm form = TangentForm::Consistent);
+
+// The symmetric form of an update's tangent (SPD: 1/c_tangent > 0 and Dhat_zz,zz = 1).
+Mat6 symmetric_tangent(const Material& m, const PointUpdate& u);
 
 }  // namespace ugs::fem
