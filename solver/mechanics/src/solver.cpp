@@ -118,14 +118,16 @@ struct MechanicsSolver::Impl {
   // kFullAssemblyEvery updates.
   static constexpr double kTangentChange = 5e-3;
   static constexpr int kFullAssemblyEvery = 100;
-  static constexpr double kFactorIpd = 5.0;  // iterations per decade a kept factorization may need
+  static constexpr double kFactorIpd = 5.0;      // iterations per decade a kept factorization gets
+  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off
   int updates_since_full = 0;
   Mat A = nullptr, P = nullptr;
   PetscInt user_maxit_ = -1;
   Vec u = nullptr, u_save = nullptr, u_step = nullptr, r = nullptr, du = nullptr;
   KSP ksp = nullptr;
   bool pc_valid = false;
-  double baseline_ipd = 0, last_ipd = 0;
+  double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
+  double setup_seconds = 0, seconds_per_iteration = 0;  // measured: last PC setup, last solve
   int pc_setups = 0;
   // Predictor: the span of the last step increments (orthonormal), Galerkin-projected.
   static constexpr int kRecycle = 48;
@@ -667,6 +669,20 @@ struct MechanicsSolver::Impl {
     return s;
   }
 
+  // solve_once, timing the preconditioner setup (when fresh) and the iterations apart.
+  SolveResult timed_solve(double rtol, bool guess, PetscInt maxit, bool fresh) {
+    using clock = std::chrono::steady_clock;
+    auto t0 = clock::now();
+    if (fresh) {
+      UGS_PETSC(KSPSetUp(ksp));
+      setup_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+      t0 = clock::now();
+    }
+    const SolveResult s = solve_once(rtol, guess, maxit);
+    seconds_per_iteration = std::chrono::duration<double>(clock::now() - t0).count() / std::max(s.iterations, 1);
+    return s;
+  }
+
   SolveResult solve(double rtol, bool guess) {
     if (user_maxit_ < 0) {
       PetscReal a, b, c;
@@ -675,10 +691,12 @@ struct MechanicsSolver::Impl {
     bool fresh = !pc_valid;
     if (!pc_valid) rebuild_pc();
     if (mat_changed) {
-      // A factorization is kept while a solve needs fewer than kFactorIpd iterations per decade
-      // (a refactor costs tens of solves); a multigrid hierarchy while it stays near its first rate
-      // and few elements changed branch (a setup costs a few cycles).
-      const bool keep = factored() ? last_ipd <= kFactorIpd
+      // A factorization is kept while the iterations it costs beyond a fresh one, over the next
+      // kFactorHorizon solves, take less time than refactoring (both measured: a refactor costs
+      // tens of solves); a multigrid hierarchy while it stays near its first rate and few
+      // elements changed branch (a setup costs a few cycles).
+      const double excess = (last_ipd - baseline_ipd) * last_decades * seconds_per_iteration * kFactorHorizon;
+      const bool keep = factored() ? excess <= setup_seconds
                                    : last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0) && !branches_moved();
       const bool reuse = pc_valid && opt.reuse_preconditioner && keep;
       if (reuse) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
@@ -691,17 +709,17 @@ struct MechanicsSolver::Impl {
     const PetscInt budget = fresh ? -1
                             : factored() ? static_cast<PetscInt>(std::ceil(2 * kFactorIpd * decades))
                                          : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
-    SolveResult s = solve_once(rtol, guess, budget);
+    SolveResult s = timed_solve(rtol, guess, budget, fresh);
     int its_total = s.iterations;
     if (iterative() && !fresh && s.reason < 0) {
       rebuild_pc();
       fresh = true;
-      s = solve_once(rtol, false, -1);
+      s = timed_solve(rtol, false, -1, fresh);
       its_total += s.iterations;
     }
     if (iterative()) {
-      const double d = std::max(std::log10(1.0 / std::max(s.reduction, 1e-300)), 0.3);
-      last_ipd = s.iterations / d;
+      last_decades = std::max(std::log10(1.0 / std::max(s.reduction, 1e-300)), 0.3);
+      last_ipd = s.iterations / last_decades;
       if (fresh) baseline_ipd = last_ipd;
     }
     s.iterations = its_total;
