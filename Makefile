@@ -27,8 +27,9 @@ test-asan: deps
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS) -LE "bench-long|no-asan"
 
+# The faulted run goes alongside the continuous one and the calibration (make -j).
 demo: build
-	$(MAKE) -C data-samples/po-plain demo UGS_BIN=$(abspath $(BUILD))/tools
+	$(MAKE) -C data-samples/po-plain -j $(JOBS) demo UGS_BIN=$(abspath $(BUILD))/tools
 
 bench: build
 	./bench/run-all $(BUILD)
