@@ -1,0 +1,210 @@
+"""End-to-end test of the po-plain pipeline (data-samples/po-plain/Makefile) at its tiny scale.
+
+    /usr/bin/python3 tests/e2e/test_pipeline.py BUILD_DIR [WORK_DIR]
+
+Runs plan -> mesh -> faults -> flow -> continuous mechanics -> faulted mechanics -> sampling ->
+calibration -> report, then checks the headline numbers against ranges derived from the twin's own
+parameters (case.toml, the traces, the pressure schedules) by closed forms — not against a previous
+run:
+  * storage 2015 uplift and 2015-16 settlement: Geertsma's disk (1973) for Pool C and Pool A, each
+    with the area of its trace, thickness and depth at the crest, the unloading/reloading
+    compressibility c_M(sigma_max) / c_R and the pool's pressure swing; the mesh is coarse and the
+    model bottom and sides are fixed, so the range is a factor 0.4 .. 2.5 around the sum;
+  * chi on the regional faults before production: the geostatic value on a plane of the fault's dip
+    under sigma'_h = k0 sigma'_v with the case's friction angle (cohesionless, so the same at every
+    depth), within 3 %; later chi never exceeds 1 (Mohr-Coulomb), and where a fault slips it does
+    so at the depth of the depleted pools (the stress change is largest at the reservoir's edges);
+  * c_R(Pool C) recovered by the calibration: the InSAR twin was made by the solver with c_R = 3
+    (data-samples/po-plain/README.md) on the demo mesh; on the tiny mesh within +-0.6;
+  * Make reruns only what an edit affects (a raster -> the mesh and what follows, not the plan).
+"""
+
+import csv
+import datetime as dt
+import math
+import os
+import subprocess
+import sys
+import time
+import tomllib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SAMPLE = os.path.join(ROOT, "data-samples", "po-plain")
+failures = []
+
+
+def check(ok, what):
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        failures.append(what)
+
+
+def pressure(path, date):
+    with open(path, newline="") as fh:
+        for r in csv.DictReader(fh):
+            if r["date"] == date:
+                return float(r["p_MPa"])
+    raise KeyError(f"{path}: no row {date}")
+
+
+def min_pressure(path):
+    with open(path, newline="") as fh:
+        return min(float(r["p_MPa"]) for r in csv.DictReader(fh))
+
+
+def raster_at(path, x, y):
+    from osgeo import gdal
+    ds = gdal.Open(path)
+    gt = ds.GetGeoTransform()
+    col = int((x - gt[0]) / gt[1])
+    row = int((y - gt[3]) / gt[5])
+    return float(ds.GetRasterBand(1).ReadAsArray(col, row, 1, 1)[0, 0])
+
+
+def trace_centroid(name):
+    from osgeo import ogr
+    ds = ogr.Open(os.path.join(SAMPLE, "reservoir_traces.geojson"))
+    for f in ds.GetLayer(0):
+        if f.GetField("name") == name:
+            c = f.GetGeometryRef().Centroid()
+            return c.GetX(), c.GetY(), f.GetField("area_km2") * 1e6
+    raise KeyError(name)
+
+
+def geertsma_centre(cm_per_MPa, dp_MPa, h, area, depth, nu=0.3):
+    """Uplift (m) above the centre of a disk reservoir of the trace's area (Geertsma 1973)."""
+    radius = math.sqrt(area / math.pi)
+    eta = depth / radius
+    return 2.0 * cm_per_MPa * (1.0 - nu) * dp_MPa * h * (1.0 - eta / math.sqrt(1.0 + eta * eta))
+
+
+def expected_uplift(case, d1, d0):
+    """Sum over the two pools of Geertsma's centre uplift for the pressure change d0 -> d1."""
+    ist = case["initial_stress"]
+    mats = {m["name"]: m for m in case["material"]}
+    total = 0.0
+    for pool, mat, top, base in (("Pool C", "pool_c", "07_pool_c_top", "08_pool_c_base"),
+                                 ("Pool A", "pool_a", "05_pool_a_top", "06_pool_a_base")):
+        x, y, area = trace_centroid(pool)
+        zt = raster_at(os.path.join(SAMPLE, "surfaces", top + ".tif"), x, y)
+        zb = raster_at(os.path.join(SAMPLE, "surfaces", base + ".tif"), x, y)
+        zg = raster_at(os.path.join(SAMPLE, "surfaces", "01_dem.tif"), x, y)
+        depth = zg - 0.5 * (zt + zb)
+        sched = os.path.join(SAMPLE, next(p["schedule"] for p in case["pool"] if p["name"] == pool))
+        m = mats[mat]
+        p0 = pressure(sched, "1950-01-01")
+        # preconsolidation: the geostatic effective stress plus the deepest depletion of the pool
+        s0 = (ist["lithostatic_gradient_MPa_per_m"] - m["biot"] * ist["hydrostatic_gradient_MPa_per_m"]) * (
+            ist["surface_elevation_m"] - 0.5 * (zt + zb))
+        smax = s0 + m["biot"] * (p0 - min_pressure(sched))
+        cm = m["cm_a"] * smax ** (-m["cm_b"]) / m["c_R"]
+        dp = pressure(sched, d1) - pressure(sched, d0)
+        total += geertsma_centre(cm, m["biot"] * dp, zt - zb, area, depth)
+    return total * 1e3
+
+
+def geostatic_chi(dip_deg, k0, phi_deg):
+    d = math.radians(dip_deg)
+    tau = (1.0 - k0) * math.sin(d) * math.cos(d)
+    sn = math.cos(d) ** 2 + k0 * math.sin(d) ** 2
+    return tau / (sn * math.tan(math.radians(phi_deg)))
+
+
+def headlines(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def value(rows, group_prefix, quantity):
+    for r in rows:
+        if r["group"].startswith(group_prefix) and r["quantity"] == quantity:
+            return float(r["value_number"])
+    raise KeyError(f"no headline '{group_prefix}' / '{quantity}'")
+
+
+def main():
+    build = os.path.abspath(sys.argv[1])
+    out = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(build, "e2e-tiny")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    make = ["make", "-s", "-j2", "-C", SAMPLE, f"UGS_BIN={build}/tools", f"OUT={out}", "SCALE=tiny"]
+    subprocess.run(["rm", "-rf", out], check=True)
+    t0 = time.time()
+    r = subprocess.run(make + ["demo"], env=env, capture_output=True, text=True)
+    elapsed = time.time() - t0
+    if r.returncode != 0:
+        print(r.stdout[-3000:], r.stderr[-3000:])
+    check(r.returncode == 0, f"make demo SCALE=tiny exits 0 ({elapsed:.0f} s)")
+    if r.returncode != 0:
+        return 1
+    check(f"the report is {out}/report/summary.md" in r.stdout, "make demo prints where the report is")
+
+    for f in ("model.msh", "faulted.msh", "pool_a_dp.h5", "pool_c_dp.h5", "solve.h5", "solve.xdmf", "solve_top.h5",
+              "faulted_faults.h5", "faulted_faults.xdmf", "faulted_faults.csv", "samples.csv",
+              "calibration/best.toml", "report/summary.md", "report/summary.html", "report/headlines.csv"):
+        check(os.path.isfile(os.path.join(out, f)), f"{f} written")
+    pngs = [f for f in os.listdir(os.path.join(out, "report")) if f.endswith(".png")]
+    tifs = [f for f in os.listdir(os.path.join(out, "report")) if f.endswith(".tif")]
+    check(len(pngs) >= 20 and len(tifs) >= 9, f"report: {len(pngs)} PNG, {len(tifs)} GeoTIFF")
+    with open(os.path.join(out, "report", "summary.md")) as fh:
+        summary = fh.read()
+    check("## Comparison with the thesis" in summary, "the summary says where and why the numbers differ from the thesis'")
+
+    with open(os.path.join(SAMPLE, "case.toml"), "rb") as fh:
+        case = tomllib.load(fh)
+    rows = headlines(os.path.join(out, "report", "headlines.csv"))
+
+    up = value(rows, "storage 2015", "maximum uplift")
+    up_ref = expected_uplift(case, "2015-11-01", "2015-05-01")
+    check(0.4 * up_ref <= up <= 2.5 * up_ref,
+          f"storage 2015 uplift {up:.2f} mm within 0.4 .. 2.5 x Geertsma's {up_ref:.2f} mm")
+    down = value(rows, "production 2015", "maximum settlement")
+    down_ref = -expected_uplift(case, "2016-05-01", "2015-11-01")
+    check(0.4 * down_ref <= down <= 2.5 * down_ref,
+          f"production 2015-16 settlement {down:.2f} mm within 0.4 .. 2.5 x Geertsma's {down_ref:.2f} mm")
+    fc = value(rows, "forecast storage 2025", "maximum uplift")
+    fc_ref = expected_uplift(case, "2025-11-01", "2025-05-01")
+    check(0.4 * fc_ref <= fc <= 2.5 * fc_ref and fc > up,
+          f"forecast 2025 uplift {fc:.2f} mm within 0.4 .. 2.5 x Geertsma's {fc_ref:.2f} mm and above 2015's")
+
+    from osgeo import ogr
+    fault_ds = ogr.Open(os.path.join(SAMPLE, "faults.geojson"))  # (kept: its layer dies with it)
+    faults = {f.GetField("name"): f.GetField("dip_deg") for f in fault_ds.GetLayer(0)}
+    k0 = case["initial_stress"]["k0"]
+    with open(os.path.join(out, "faulted_faults.csv"), newline="") as fh:
+        stats = list(csv.DictReader(row for row in fh if not row.startswith("#")))
+    tops = [raster_at(os.path.join(SAMPLE, "surfaces", s + ".tif"), *trace_centroid(p)[:2])
+            for s, p in (("05_pool_a_top", "Pool A"), ("07_pool_c_top", "Pool C"))]
+    bases = [raster_at(os.path.join(SAMPLE, "surfaces", s + ".tif"), *trace_centroid(p)[:2])
+             for s, p in (("06_pool_a_base", "Pool A"), ("08_pool_c_base", "Pool C"))]
+    for name in ("overthrust_north", "backthrust_south"):
+        phi = next(f["friction_deg"] for f in case["fault"] if f["name"] == name)
+        ref = geostatic_chi(faults[name], k0, phi)
+        rows_f = [r for r in stats if r["fault"] == name]
+        chi0 = float(rows_f[0]["max_chi"])
+        check(rows_f[0]["date"] == "1950-01-01" and abs(chi0 - ref) <= 0.03 * ref,
+              f"initial chi on {name} {chi0:.4f} = geostatic {ref:.4f} (dip {faults[name]} deg) within 3 %")
+        check(all(float(r["max_chi"]) <= 1 + 1e-6 for r in rows_f), f"chi on {name} never above 1")
+        slip_z = [float(r["z_m"]) for r in rows_f if int(r["slipping"]) > 0]
+        lo, hi = min(bases) - 500.0, max(tops) + 500.0
+        check(all(lo <= z <= hi for z in slip_z),
+              f"{name} slips only at the pools' depth ({len(slip_z)} dates with slip, z in [{lo:.0f}, {hi:.0f}] m)")
+
+    with open(os.path.join(out, "calibration", "best.toml"), "rb") as fh:
+        best = tomllib.load(fh)
+    cr = next(m["c_R"] for m in best["material"] if m["name"] == "pool_c")
+    check(abs(cr - 3.0) <= 0.6, f"calibrated c_R(Pool C) = {cr:.3f} (twin: 3, tolerance 0.6 on the tiny mesh)")
+
+    # Make's dependencies: a raster edit reruns the mesh and what follows, not the plan or the flow
+    # schedules' CSVs; nothing to do on an unchanged tree.
+    r = subprocess.run(make + ["-n", "demo"], env=env, capture_output=True, text=True)
+    check(r.returncode == 0 and "ugs-" not in r.stdout, "nothing reruns on an unchanged tree")
+    r = subprocess.run(make + ["-n", "-W", "surfaces/05_pool_a_top.tif", "demo"], env=env, capture_output=True, text=True)
+    cmds = r.stdout
+    check("ugs-meshgen" in cmds and "ugs-solve" in cmds and "ugs-report" in cmds and "ugs-mesh2d" not in cmds,
+          "a raster edit reruns meshgen .. report but not mesh2d")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
