@@ -171,12 +171,18 @@ TEST(HypoplasticV1, SecantAndTangentOfAStep) {
   EXPECT_NEAR(hypo_integrate(p, st, 20, 0.0, -1).c_tangent, cM(20) / 5.0, 1e-15);
 }
 
-TEST(MaterialPoint, OedometricHypoplasticStepAndTangent) {
+// Transversely isotropic (E_h = 3 E_z), hypo-plastic with c_R = 3 and the sigma-max rule.
+static Material hypoplastic_test_material() {
   Material m;
   m.law = Law::Hypoplastic;
   m.ratios = {0.3, 3.0, 0.2, 1.0};
   m.hypo = {a, b, 3.0, 0.1, InversionRule::SigmaMax};
   m.finalize();
+  return m;
+}
+
+TEST(MaterialPoint, OedometricHypoplasticStepAndTangent) {
+  const Material m = hypoplastic_test_material();
   EXPECT_NEAR(m.Dhat[6 * ZZ + ZZ], 1.0, 1e-12);
   PointState st;
   st.hypo = HypoState::virgin(20);
@@ -196,16 +202,11 @@ TEST(MaterialPoint, OedometricHypoplasticStepAndTangent) {
   EXPECT_NEAR(u.Dt[6 * ZZ + ZZ], 1e6 / cM(26), 1e-6 * 1e6 / cM(26));
 }
 
-
 // The tangent is the derivative of the stress for any strain increment, not only the oedometric
 // one: Newton converges quadratically only with it. A central difference of every column, on the
 // virgin branch, on the unloading branch and across the knee (unloading then past sigma_max).
 TEST(MaterialPoint, ConsistentTangentIsTheDerivativeForAnyStrain) {
-  Material m;
-  m.law = Law::Hypoplastic;
-  m.ratios = {0.3, 3.0, 0.2, 1.0};
-  m.hypo = {a, b, 3.0, 0.1, InversionRule::SigmaMax};
-  m.finalize();
+  const Material m = hypoplastic_test_material();
   const double ez = virgin(20, 23);
   PointState below;  // unloaded to 18 MPa from a preconsolidation of 20 MPa
   below.hypo = {20, 20, -1};
