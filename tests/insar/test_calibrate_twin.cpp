@@ -125,6 +125,16 @@ TEST(CalibrationTwin, OneParameterRecoversCrOfPoolC) {
   const CsvTable prof2 = CsvTable::read((t.dir / "out2" / "profile.csv").string());
   for (std::size_t i = 0; i < prof2.rows(); ++i) EXPECT_EQ(prof2.text(i, prof2.column("cached")), "1");
   EXPECT_EQ(best_values(t.dir / "out2"), best);
+
+  // Relative paths, as Make passes them: the solver runs inside its evaluation folder, so {case},
+  // {out} and {dir} must not be relative to the caller's folder.
+  const auto rel = test::run("cd " + t.dir.string() + " && " + test::tool("ugs-calibrate") +
+                             " --case case.toml --param material.pool_c.c_R=2:6 --measured up.csv"
+                             " --window 2003-01-01/2021-12-31 --solver-command '" + kEvaluator +
+                             " --case {case} -o {out}' --cache-dir rel/cache --scan 3 --max-evals 3 -o rel/out");
+  ASSERT_EQ(rel.exit_code, 0) << rel.err;
+  EXPECT_TRUE(fs::exists(t.dir / "rel" / "out" / "best.toml"));
+  EXPECT_EQ(CsvTable::read((t.dir / "rel" / "out" / "profile.csv").string()).rows(), 3u);
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(t.dir);
 }
 

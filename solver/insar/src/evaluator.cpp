@@ -185,6 +185,10 @@ Evaluator::Evaluator(EvaluatorSetup setup) : setup_(std::move(setup)) {
   std::error_code ec;
   fs::create_directories(setup_.cache_dir, ec);
   if (ec) throw InputError(setup_.cache_dir, "cannot create the cache folder: " + ec.message());
+  // The solver runs inside its evaluation folder: {dir}, {out}, {case} and {mesh} must not be
+  // relative to ours.
+  setup_.cache_dir = fs::absolute(setup_.cache_dir).lexically_normal().string();
+  if (!setup_.mesh_path.empty()) setup_.mesh_path = fs::absolute(setup_.mesh_path).lexically_normal().string();
   // Rows of earlier runs stay in the index.
   const fs::path index = fs::path(setup_.cache_dir) / "index.csv";
   if (fs::exists(index)) {

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -28,8 +29,10 @@ CommandResult run_command(const std::vector<std::string>& argv, const std::strin
     ~Cleanup() { posix_spawn_file_actions_destroy(fa); }
   } cleanup{&fa};
   if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&fa, cwd.c_str());
-  if (!log.empty()) {
-    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  // The log is opened after the change of directory: a relative path would be taken from `cwd`.
+  const std::string log_path = log.empty() ? log : std::filesystem::absolute(log).string();
+  if (!log_path.empty()) {
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
   }
   posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -53,7 +56,8 @@ CommandResult run_command(const std::vector<std::string>& argv, const std::strin
   const auto t0 = std::chrono::steady_clock::now();
   pid_t pid = 0;
   const int rc = posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), envp.data());
-  if (rc != 0) throw ComputeError(fmt::format("cannot start '{}': {}", argv[0], std::strerror(rc)));
+  if (rc != 0)
+    throw ComputeError(fmt::format("cannot start '{}'{}: {}", argv[0], cwd.empty() ? "" : " in " + cwd, std::strerror(rc)));
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
     if (errno != EINTR) throw ComputeError(fmt::format("waiting for '{}': {}", argv[0], std::strerror(errno)));

@@ -680,6 +680,12 @@ struct MechanicsSolver::Impl {
     }
     const SolveResult s = solve_once(rtol, guess, maxit);
     seconds_per_iteration = std::chrono::duration<double>(clock::now() - t0).count() / std::max(s.iterations, 1);
+    // Every rank must take the same keep-or-refactor decision (the setup is collective): the
+    // slowest rank's times decide.
+    double t[2] = {setup_seconds, seconds_per_iteration}, tmax[2];
+    MPI_Allreduce(t, tmax, 2, MPI_DOUBLE, MPI_MAX, lm.comm);
+    setup_seconds = tmax[0];
+    seconds_per_iteration = tmax[1];
     return s;
   }
 
