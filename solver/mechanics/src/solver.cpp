@@ -97,11 +97,11 @@ struct MechanicsSolver::Impl {
   std::vector<std::int8_t> assembled_phase, pc_phase;  // branch in the matrix / in the matrix of the last PC setup
   long long n_hyp_global = 0;
   bool saturated = false;
-  bool has_hyp = false;                // some rank has hypo-plastic elements (the problem is nonlinear)
-  // The consistent hypo-plastic tangent is not symmetric: the Krylov method is then GMRES and MUMPS
-  // factors LU. CHOLMOD (Cholesky only) factors the matrix of the symmetric form of the tangent
-  // (material_point.hpp; SPD, unlike the symmetric part of the consistent one at the knee).
-  bool nonsymmetric = false;
+  // Some rank has hypo-plastic elements: the problem is nonlinear and its consistent tangent is not
+  // symmetric, so the Krylov method is GMRES and MUMPS factors LU; CHOLMOD (Cholesky only) factors
+  // the matrix of the symmetric form of the tangent (material_point.hpp; SPD, unlike the symmetric
+  // part of the consistent one at the knee).
+  bool has_hyp = false;
 
   // ---- loads ----------------------------------------------------------------------------------
   std::vector<double> dp_cell;         // pressure change of the current state, per local element
@@ -113,7 +113,7 @@ struct MechanicsSolver::Impl {
   std::vector<PetscInt> rowptr, cols;  // scalar CSR of the owned rows (global columns)
   std::vector<double> vals_lin, vals, diag_scale;
   bool have_lin = false, mat_created = false, mat_changed = false;
-  // Incremental assembly (iterative solvers): an element's stiffness is updated when its tangent
+  // Incremental assembly: an element's stiffness is updated when its tangent
   // moved by more than kTangentChange (relative, largest entry); a full assembly every
   // kFullAssemblyEvery updates.
   static constexpr double kTangentChange = 5e-3;
@@ -149,7 +149,6 @@ struct MechanicsSolver::Impl {
   // Every solver runs a Krylov method; with MUMPS or CHOLMOD its preconditioner is a factorization,
   // which is kept across Newton iterations and steps while it still converges fast (a refactor
   // costs tens of solves: docs/mechanics.md).
-  bool iterative() const { return true; }
   bool factored() const { return opt.linear == LinearSolver::Mumps || opt.linear == LinearSolver::Cholmod; }
   bool owned_dof_fixed(int a, int c) const { return (lm.fixed[a] >> c) & 1; }
 
@@ -182,7 +181,6 @@ struct MechanicsSolver::Impl {
     int mine = nh ? 1 : 0, any = 0;
     MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
     has_hyp = any != 0;
-    nonsymmetric = has_hyp;
     committed.resize(nh);
     committed_phase.assign(nh, fem::LoadingPhase::Virgin);
     committed_c.resize(nh);
@@ -275,7 +273,7 @@ struct MechanicsSolver::Impl {
   // CG for the SPD operator; right-preconditioned GMRES for the consistent hypo-plastic tangent
   // (both stop on the true residual, so the Newton forcing terms mean the same thing).
   void set_krylov() {
-    if (nonsymmetric) {
+    if (has_hyp) {
       UGS_PETSC(KSPSetType(ksp, KSPGMRES));
       UGS_PETSC(KSPGMRESSetRestart(ksp, 100));
       UGS_PETSC(KSPGMRESSetOrthogonalization(ksp, KSPGMRESModifiedGramSchmidtOrthogonalization));
@@ -297,7 +295,7 @@ struct MechanicsSolver::Impl {
         UGS_PETSC(PCGAMGSetReuseInterpolation(pc, PETSC_TRUE));
         // Smoothed aggregation with the rigid-body near-null space (set on the matrix); CG
         // eigenvalue estimates for the Chebyshev smoothers when the operator is SPD.
-        set_default_options({{"-mg_levels_esteig_ksp_type", nonsymmetric ? "gmres" : "cg"}});
+        set_default_options({{"-mg_levels_esteig_ksp_type", has_hyp ? "gmres" : "cg"}});
         break;
       case LinearSolver::CgHypre: {
         set_krylov();
@@ -321,7 +319,7 @@ struct MechanicsSolver::Impl {
       }
       case LinearSolver::Mumps:
         set_krylov();
-        UGS_PETSC(PCSetType(pc, nonsymmetric ? PCLU : PCCHOLESKY));
+        UGS_PETSC(PCSetType(pc, has_hyp ? PCLU : PCCHOLESKY));
         UGS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
         break;
       case LinearSolver::Cholmod:
@@ -407,7 +405,7 @@ struct MechanicsSolver::Impl {
       } else {
         trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], committed[h], start_sigma(h), eps,
                                     hold[h] == fem::Hold::None ? guess[h] : hold_dir[h], hold[h],
-                                    nonsymmetric ? fem::TangentForm::Consistent : fem::TangentForm::Symmetric);
+                                    fem::TangentForm::Consistent);
         trial_eps[h] = eps;
         ds = trial[h].dsig;
         sat = sat || trial[h].saturated;
@@ -564,7 +562,7 @@ struct MechanicsSolver::Impl {
       }
       UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
       UGS_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
-      if (!nonsymmetric) {
+      if (!has_hyp) {
         UGS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
         UGS_PETSC(MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
         UGS_PETSC(MatSetOption(A, MAT_SPD, PETSC_TRUE));
@@ -608,7 +606,7 @@ struct MechanicsSolver::Impl {
   // branches) and the hierarchy is reused, it must see the matrix the hierarchy was built from, or
   // its Chebyshev bounds no longer hold. So GAMG gets a frozen copy P; hypre copies A itself.
   bool separate_p() const {
-    return (opt.linear == LinearSolver::CgGamg && has_hyp) || (opt.linear == LinearSolver::Cholmod && nonsymmetric);
+    return (opt.linear == LinearSolver::CgGamg && has_hyp) || (opt.linear == LinearSolver::Cholmod && has_hyp);
   }
 
   // P from the symmetric form of every element's tangent (CHOLMOD's matrix).
@@ -661,11 +659,9 @@ struct MechanicsSolver::Impl {
     UGS_PETSC(KSPGetIterationNumber(ksp, &its));
     UGS_PETSC(KSPGetConvergedReason(ksp, &s.reason));
     s.iterations = static_cast<int>(its);
-    if (iterative()) {
-      PetscReal rnorm = 0;
-      UGS_PETSC(KSPGetResidualNorm(ksp, &rnorm));
-      s.reduction = bnorm > 0 ? rnorm / bnorm : 0;
-    }
+    PetscReal rnorm = 0;
+    UGS_PETSC(KSPGetResidualNorm(ksp, &rnorm));
+    s.reduction = bnorm > 0 ? rnorm / bnorm : 0;
     return s;
   }
 
@@ -717,17 +713,15 @@ struct MechanicsSolver::Impl {
                                          : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
     SolveResult s = timed_solve(rtol, guess, budget, fresh);
     int its_total = s.iterations;
-    if (iterative() && !fresh && s.reason < 0) {
+    if (!fresh && s.reason < 0) {
       rebuild_pc();
       fresh = true;
       s = timed_solve(rtol, false, -1, fresh);
       its_total += s.iterations;
     }
-    if (iterative()) {
-      last_decades = std::max(std::log10(1.0 / std::max(s.reduction, 1e-300)), 0.3);
-      last_ipd = s.iterations / last_decades;
-      if (fresh) baseline_ipd = last_ipd;
-    }
+    last_decades = std::max(std::log10(1.0 / std::max(s.reduction, 1e-300)), 0.3);
+    last_ipd = s.iterations / last_decades;
+    if (fresh) baseline_ipd = last_ipd;
     s.iterations = its_total;
     if (fresh) ++pc_setups;
     pc_valid = true;
@@ -760,7 +754,7 @@ struct MechanicsSolver::Impl {
   // preconditioner is rebuilt, when A W is recomputed and W re-orthonormalized.
   bool predict() {
     const int m = static_cast<int>(basis.size());
-    if (m == 0 || !iterative()) return false;
+    if (m == 0) return false;
     std::vector<PetscScalar> c(m);
     UGS_PETSC(VecMDot(r, m, basis.data(), c.data()));
     UGS_PETSC(VecSet(du, 0.0));
@@ -809,7 +803,7 @@ struct MechanicsSolver::Impl {
   // Adds the increment u - base of a converged (sub-)step to the basis, A-orthogonalized against it
   // (the oldest direction is dropped when full).
   void remember_increment_from(Vec base) {
-    if (!iterative() || !mat_created) return;  // (no matrix yet: the step had no load)
+    if (!mat_created) return;  // (no matrix yet: the step had no load)
     Vec v, av;
     UGS_PETSC(VecDuplicate(u, &v));
     UGS_PETSC(VecDuplicate(u, &av));
