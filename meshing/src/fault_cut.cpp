@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -13,6 +14,7 @@
 
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
+#include "cut_band_improvement.hpp"
 
 namespace ugs {
 namespace {
@@ -217,6 +219,8 @@ public:
           const auto e = blk.element(i);
           T_.push_back({e[0], e[1], e[2], e[3]});
           Tb_.push_back(static_cast<std::uint32_t>(b));
+          Tp_.push_back(static_cast<std::uint32_t>(Tp_.size()));
+          parent_quality_.push_back(min_dihedral_angle_deg(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
         }
       else if (blk.type == ElementType::Triangle)
         for (std::size_t i = 0; i < blk.size(); ++i) {
@@ -546,6 +550,35 @@ public:
     return total;
   }
 
+  // Steps 5 and 6: collapse of short edges and smoothing in the band the cut made
+  // (cut_band_improvement.hpp).
+  BandImprovement improve(std::size_t first_new, double ratio, double smooth_below_deg, double bound_deg) {
+    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), parent_quality_, bound_deg},
+                            first_new, ratio, smooth_below_deg, tol_);
+  }
+
+  // The tetrahedra holding a node numbered first_new or above (those the cut made): how many,
+  // their smallest dihedral angle, how many are below min(bound, their input tetrahedron's angle)
+  // and how many below `fraction` of that.
+  struct BandQuality {
+    std::size_t tetrahedra = 0, below_reference = 0, below_bound = 0;
+    double min_deg = 180;
+  };
+  BandQuality band_quality(std::size_t first_new, double bound_deg, double fraction) const {
+    BandQuality q;
+    for (std::size_t i = 0; i < T_.size(); ++i) {
+      const auto& t = T_[i];
+      if (t[0] < first_new && t[1] < first_new && t[2] < first_new && t[3] < first_new) continue;
+      ++q.tetrahedra;
+      const double a = min_dihedral_angle_deg(X_[t[0]], X_[t[1]], X_[t[2]], X_[t[3]]);
+      const double ref = std::min(bound_deg, parent_quality_[Tp_[i]]);
+      q.min_deg = std::min(q.min_deg, a);
+      q.below_reference += a < ref;
+      q.below_bound += a < fraction * ref;
+    }
+    return q;
+  }
+
   // Writes the elements back into the mesh's blocks, plus the fault groups (the virtual blocks);
   // renumbers element tags.
   void finish(const std::vector<std::string>& names, std::size_t nodes_before) {
@@ -656,6 +689,7 @@ private:
       for (std::size_t c = 1; c < tets.size(); ++c) {
         T_.push_back(tets[c]);
         Tb_.push_back(Tb_[i]);
+        Tp_.push_back(Tp_[i]);
       }
     }
     std::vector<std::array<std::uint32_t, 3>> tris;
@@ -690,6 +724,8 @@ private:
   double tol_;
   std::vector<std::array<std::uint32_t, 4>> T_;
   std::vector<std::uint32_t> Tb_;
+  std::vector<std::uint32_t> Tp_;         // the input tetrahedron each one comes from
+  std::vector<double> parent_quality_;    // smallest dihedral angle of each input tetrahedron
   std::vector<std::array<std::uint32_t, 3>> F_;
   std::vector<std::uint32_t> Fb_;
   std::vector<const CutPanel*> done_;  // the panels cut so far
@@ -763,6 +799,14 @@ FaultCutSummary cut_faults(Mesh& mesh, const std::vector<FaultTrace>& traces, co
     sum.faults.push_back(r);
   }
   sum.untorn = cut.untear(traces.size());
+  const BandImprovement better = cut.improve(sum.nodes_before, options.collapse, options.smooth_below_deg, options.bound_deg);
+  sum.collapsed = better.collapsed;
+  sum.smoothed = better.moved;
+  const auto band = cut.band_quality(sum.nodes_before, options.bound_deg, options.bound_fraction);
+  sum.band_tetrahedra = band.tetrahedra;
+  sum.band_min_dihedral_deg = band.min_deg;
+  sum.band_below_reference = band.below_reference;
+  sum.band_below_bound = band.below_bound;
   // Report: distance and normal of every face against the panel it lies in.
   const auto& X = cut.nodes();
   for (std::size_t f = 0; f < traces.size(); ++f) {

@@ -24,6 +24,9 @@ constexpr double kPi = std::numbers::pi;
 // The block: 4 x 3 km, 3 km deep, 250 m cells (Kuhn split), two materials (a layer boundary at -1,500 m).
 constexpr double X1 = 4000, Y1 = 3000, Z0 = -3000;
 constexpr double kSize = 5830.95;  // diagonal
+// The smallest dihedral angle of the tetrahedra the cut makes (docs/dipping-faults.md, "Mesh
+// quality": why 2 degrees).
+constexpr double kBoundDeg = 2.0;
 
 Mesh block() {
   BoxMeshSpec s;
@@ -222,10 +225,13 @@ TEST_P(PlanarDip, FacesOnThePlaneCoverTheFault) {
   expect_on_surface(m, tr, area);
   EXPECT_NEAR(sum.faults[0].area, area, 1e-9 * area);
   const double a = min_dihedral(m);
-  std::printf("dip %.0f toward %.0f: %zu -> %zu tetrahedra, %zu snapped, smallest dihedral angle %.3f deg\n", dip, dipdir,
-              sum.tetrahedra_before, sum.tetrahedra_after, sum.snapped, a);
-  // Bound: see docs/dipping-faults.md (cuts closer than tolerance to a fixed node are not made).
-  EXPECT_GT(a, 0.0);
+  std::printf("dip %.0f toward %.0f: %zu -> %zu tetrahedra, %zu snapped, %zu collapsed, %zu smoothing moves, smallest "
+              "dihedral angle %.3f deg\n",
+              dip, dipdir, sum.tetrahedra_before, sum.tetrahedra_after, sum.snapped, sum.collapsed, sum.smoothed, a);
+  EXPECT_GE(sum.band_min_dihedral_deg, kBoundDeg);
+  EXPECT_EQ(sum.band_below_reference, 0u);  // the input's tetrahedra are better than the bound here
+  EXPECT_EQ(a, std::min(sum.band_min_dihedral_deg, min_dihedral(block())));  // the band is the only change
+  EXPECT_GT(sum.collapsed + sum.smoothed, 0u);
   // The fault becomes interface elements.
   FaultInsertOptions io;
   const auto rep = insert_faults(m, io);
@@ -246,6 +252,8 @@ TEST(DippingFaults, ListricFault) {
   const auto sum = cut_faults(m, {tr});
   EXPECT_EQ(sum.faults[0].panels, 3u);
   expect_sound(m, X1 * Y1 * -Z0);
+  std::printf("listric: smallest dihedral angle of the cut's tetrahedra %.3f deg\n", sum.band_min_dihedral_deg);
+  EXPECT_GE(sum.band_min_dihedral_deg, kBoundDeg);
   expect_on_surface(m, tr, area_inside(tr));
   // The kinks are horizontal lines at the piece boundaries: faces are found on all three planes.
   const ElementBlock* b = group(m, "fault:listric");
@@ -268,6 +276,8 @@ TEST(DippingFaults, TwoCrossingFaults) {
   expect_sound(m, X1 * Y1 * -Z0);
   expect_on_surface(m, a, area_inside(a));
   expect_on_surface(m, b, area_inside(b));
+  std::printf("crossing: smallest dihedral angle of the cut's tetrahedra %.3f deg\n", sum.band_min_dihedral_deg);
+  EXPECT_GE(sum.band_min_dihedral_deg, kBoundDeg);
   // The intersection line is made of mesh edges: both faults share nodes along it, all at x = 2000.
   std::set<std::uint32_t> na, nb;
   for (auto v : group(m, "fault:east_dipping")->nodes) na.insert(v);
@@ -284,7 +294,6 @@ TEST(DippingFaults, TwoCrossingFaults) {
   const auto rep = insert_faults(m, io);
   ASSERT_EQ(rep.faults.size(), 2u);
   EXPECT_GT(rep.faults[0].meets.count("west_dipping"), 0u);
-  (void)sum;
 }
 
 TEST(DippingFaults, FaultEndingAgainstAnother) {
@@ -296,6 +305,8 @@ TEST(DippingFaults, FaultEndingAgainstAnother) {
   b.ends_against = "main";
   const auto sum = cut_faults(m, {a, b});
   expect_sound(m, X1 * Y1 * -Z0);
+  std::printf("ending against: smallest dihedral angle of the cut's tetrahedra %.3f deg\n", sum.band_min_dihedral_deg);
+  EXPECT_GE(sum.band_min_dihedral_deg, kBoundDeg);
   expect_on_surface(m, a, area_inside(a));
   // The main fault's plane: x - 1200 = (-100 - z) (dip 45 toward east); the splay keeps x above it.
   const double s2 = std::sqrt(0.5);

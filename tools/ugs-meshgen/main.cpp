@@ -103,9 +103,9 @@ int main(int argc, char** argv) {
       t = clock.lap();
       total += t;
       ugs::cli::detail("dipping faults cut in {:.3f} s: {} -> {} tetrahedra, {} new nodes, {} nodes snapped onto a fault, {} edges bisected "
-                       "against tearing (on-plane tolerance {:.2g} m)",
+                       "against tearing, {} short edges collapsed, {} smoothing moves (on-plane tolerance {:.2g} m)",
                        t, cut.tetrahedra_before, cut.tetrahedra_after, cut.nodes_after - cut.nodes_before, cut.snapped,
-                       cut.untorn, cut.tolerance);
+                       cut.untorn, cut.collapsed, cut.smoothed, cut.tolerance);
       for (const auto& f : cut.faults) {
         ugs::cli::info("fault:{:<20} dipping, {} panel(s): {} triangles, {:.4g} km2, z {:.1f} .. {:.1f} m, off-plane "
                        "{:.1e} m, normal {:.1e} deg",
@@ -114,6 +114,13 @@ int main(int argc, char** argv) {
           ugs::cli::warning("fault '{}': {} faces of its surface lie on the model boundary and are not part of it",
                             f.name, f.boundary_faces);
       }
+      ugs::cli::info("fault cut: {} tetrahedra hold a node the cut made: smallest dihedral angle {:.2f} deg; {} below "
+                     "min(2 deg, their input tetrahedron's), {} below a tenth of it",
+                     cut.band_tetrahedra, cut.band_min_dihedral_deg, cut.band_below_reference, cut.band_below_bound);
+      if (cut.band_below_bound > 0)
+        ugs::cli::warning("the fault cut left {} tetrahedra below a tenth of min(2 deg, their input tetrahedron's smallest "
+                          "dihedral angle) (docs/dipping-faults.md, \"Mesh quality\")",
+                          cut.band_below_bound);
     }
 
     const ugs::QualityReport q = ugs::mesh_quality(mesh, opt.small_angle);

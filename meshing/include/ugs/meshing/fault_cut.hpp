@@ -58,6 +58,19 @@ struct FaultCutOptions {
   // tetrahedra stay positive and keep at least half their smallest dihedral angle: fewer slivers.
   // 0 = never.
   double snap = 0.2;
+  // After the cut (docs/dipping-faults.md, steps 5-6), a node it made is merged into a neighbour
+  // across an edge shorter than collapse * the longest edge of a tetrahedron holding it (two cuts
+  // that met at a small angle), and the nodes of the cut's tetrahedra with a dihedral angle below
+  // smooth_below_deg are smoothed; both within the nodes' surfaces and only where the worst
+  // tetrahedron touched gets better. 0 = never.
+  double collapse = 0.2;
+  double smooth_below_deg = 10;
+  // The quality bound (docs/dipping-faults.md, "Mesh quality"): a tetrahedron holding a node the
+  // cut made should keep a smallest dihedral angle of at least min(bound_deg, that of the input
+  // tetrahedron it comes from) (the reference), and must keep bound_fraction of it (the bound).
+  // The collapse and the smoothing raise the worst ratio to the reference they touch.
+  double bound_deg = 2.0;
+  double bound_fraction = 0.1;
 };
 
 struct FaultCutReport {
@@ -78,6 +91,12 @@ struct FaultCutSummary {
   std::size_t untorn = 0;
   std::size_t snapped = 0;        // nodes moved onto a panel's plane or limit (edges bisected so
                                   // that no tetrahedron has four nodes on one fault: untorn)
+  std::size_t collapsed = 0;       // nodes merged into a neighbour across a short edge
+  std::size_t smoothed = 0;        // node moves by smoothing
+  std::size_t band_tetrahedra = 0;     // tetrahedra holding a node the cut made
+  double band_min_dihedral_deg = 180;  // their smallest dihedral angle
+  std::size_t band_below_reference = 0;  // of them below min(bound_deg, their input tetrahedron's)
+  std::size_t band_below_bound = 0;      // of them below bound_fraction of that
   double tolerance = 0;
 };
 

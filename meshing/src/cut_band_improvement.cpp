@@ -1,0 +1,482 @@
+// Quality of the tetrahedra a fault cut made (cut_band_improvement.hpp).
+#include "cut_band_improvement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <iterator>
+#include <tuple>
+
+#include <Eigen/Dense>
+
+#include "ugs/meshing/mesh_quality.hpp"
+
+namespace ugs {
+namespace {
+
+using Face = std::array<std::uint32_t, 3>;
+using Tet = std::array<std::uint32_t, 4>;
+
+Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Point3 add(const Point3& a, const Point3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Point3 scaled(const Point3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
+
+Face sorted(Face f) {
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+template <class E>
+bool has(const E& e, std::uint32_t v) {
+  return std::find(e.begin(), e.end(), v) != e.end();
+}
+
+constexpr int kFaceOf[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+// Unit normals or directions this close (|cross|, radians) are one plane or line when choosing
+// the directions a node may move in; the move must then keep the node within the tolerance of
+// every plane (checked). A raster surface's curvature (1e-2) restricts or fixes its nodes.
+constexpr double kParallel = 1e-4;
+
+// What a node must stay on: planes (a point and a unit normal) and feature lines (a direction).
+// Fault faces lie on a mathematical plane within the on-plane tolerance: a node may move within it
+// and stay within the tolerance. Every other surface (boundary, groups, material interfaces, often
+// curved raster horizons) must keep its exact shape, so that material volumes do not change: a
+// move must lie in each of its faces' planes to rounding (`exact`).
+struct Plane {
+  Point3 p, n;
+  bool exact;
+};
+struct Line {
+  Point3 d;
+  bool exact;
+};
+struct Surfaces {
+  std::vector<Plane> planes;
+  std::vector<Line> lines;
+};
+
+class BandImprover {
+public:
+  BandImprover(ElementSoup s, std::size_t first_new, double ratio, double smooth_below, double tol)
+      : s_(s), first_new_(first_new), ratio_(ratio), smooth_below_(smooth_below), tol_(tol), round_(1e-3 * tol) {}
+
+  BandImprovement run() {
+    BandImprovement r;
+    tet_dead_.assign(s_.tets.size(), 0);
+    tri_dead_.assign(s_.tris.size(), 0);
+    node_dead_.assign(s_.nodes.size(), 0);
+    if (ratio_ > 0)
+      for (int pass = 0; pass < 10; ++pass) {
+        const std::size_t n = collapse_pass();
+        r.collapsed += n;
+        if (n == 0) break;
+      }
+    if (smooth_below_ > 0)
+      for (int pass = 0; pass < 6; ++pass) {
+        const std::size_t n = smoothing_pass();
+        r.moved += n;
+        if (n == 0) break;
+      }
+    compact();
+    return r;
+  }
+
+private:
+  const Point3& X(std::uint32_t v) const { return s_.nodes[v]; }
+  double quality(const Tet& t) const { return min_dihedral_angle_deg(X(t[0]), X(t[1]), X(t[2]), X(t[3])); }
+  // The measure every change must raise (its minimum over the tetrahedra it touches): the smallest
+  // dihedral angle relative to min(bound, that of the input tetrahedron it comes from), so that a
+  // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
+  // neighbours, and the cut is held to the bound where the input was better.
+  double score(std::uint32_t t, const Tet& e) const {
+    const double ref = std::min(s_.bound_deg, s_.parent_quality[s_.tet_parent[t]]);
+    return quality(e) / std::max(ref, 1e-9);
+  }
+  bool in_band(const Tet& t) const {
+    return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
+  }
+
+  // Incidences of the nodes flagged in `want` (alive elements only).
+  void build_adjacency(const std::vector<char>& want) {
+    tets_of_.assign(s_.nodes.size(), {});
+    tris_of_.assign(s_.nodes.size(), {});
+    for (std::size_t t = 0; t < s_.tets.size(); ++t)
+      if (!tet_dead_[t])
+        for (auto v : s_.tets[t])
+          if (want[v]) tets_of_[v].push_back(static_cast<std::uint32_t>(t));
+    for (std::size_t i = 0; i < s_.tris.size(); ++i)
+      if (!tri_dead_[i])
+        for (auto v : s_.tris[i])
+          if (want[v]) tris_of_[v].push_back(static_cast<std::uint32_t>(i));
+  }
+
+  // The surfaces through v: its triangles, the faces between two materials and the outer faces
+  // around it (a face holding v belongs to tetrahedra holding v, so the counts are exact); its
+  // feature lines: edges of a surface group used by other than two faces, or by two faces that are
+  // not coplanar. nullopt-like: returns false when a face is degenerate (v stays).
+  bool surfaces_of(std::uint32_t v, Surfaces& out) const {
+    std::vector<std::pair<std::uint64_t, Face>> faces;
+    for (auto i : tris_of_[v]) faces.push_back({s_.tri_group[i], s_.tris[i]});
+    std::map<Face, std::pair<std::uint32_t, int>> around;  // face -> (block, uses)
+    std::map<Face, Face> oriented;
+    for (auto t : tets_of_[v])
+      for (const auto& f : kFaceOf) {
+        const Face tri{s_.tets[t][f[0]], s_.tets[t][f[1]], s_.tets[t][f[2]]};
+        if (!has(tri, v)) continue;
+        const Face key = sorted(tri);
+        auto [it, fresh] = around.emplace(key, std::pair{s_.tet_block[t], 1});
+        oriented.emplace(key, tri);
+        if (fresh) continue;
+        ++it->second.second;
+        if (it->second.first != s_.tet_block[t]) {
+          const std::uint64_t lo = std::min(it->second.first, s_.tet_block[t]), hi = std::max(it->second.first, s_.tet_block[t]);
+          faces.push_back({(std::uint64_t{1} << 62) | (lo << 24) | hi, tri});
+        }
+      }
+    for (const auto& [key, bu] : around)
+      if (bu.second == 1) faces.push_back({std::uint64_t{1} << 63, oriented.at(key)});
+    auto exact = [&](std::uint64_t g) { return !(g >= s_.first_fault_group && g < (std::uint64_t{1} << 62)); };
+    // Per (group, edge v-w): the faces' normals and third nodes.
+    std::map<std::pair<std::uint64_t, std::uint32_t>, std::vector<std::pair<Point3, std::uint32_t>>> at_edge;
+    for (const auto& [g, f] : faces) {
+      const Point3 n = cross(sub(X(f[1]), X(f[0])), sub(X(f[2]), X(f[0])));
+      const double nn = norm(n);
+      if (!(nn > 0)) return false;
+      const Point3 u = scaled(n, 1 / nn);
+      out.planes.push_back({X(f[0]), u, exact(g)});
+      for (int k = 0; k < 3; ++k)
+        if (f[k] != v) at_edge[{g, f[k]}].push_back({u, f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
+    }
+    // A crease: the two faces' third nodes off each other's plane (by more than the tolerance on a
+    // fault, by more than rounding elsewhere).
+    for (const auto& [key, fs] : at_edge) {
+      const double t = exact(key.first) ? round_ : tol_;
+      if (fs.size() != 2 || std::abs(dot(fs[0].first, sub(X(fs[1].second), X(v)))) > t ||
+          std::abs(dot(fs[1].first, sub(X(fs[0].second), X(v)))) > t) {
+        const Point3 d = sub(X(key.second), X(v));
+        out.lines.push_back({scaled(d, 1 / norm(d)), exact(key.first)});
+      }
+    }
+    return true;
+  }
+
+  // ---- 1. collapse ------------------------------------------------------------------------------
+  std::size_t collapse_pass() {
+    std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> cands;  // (length, removed, kept)
+    std::vector<char> want(s_.nodes.size(), 0);
+    for (std::size_t t = 0; t < s_.tets.size(); ++t) {
+      if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
+      const auto& e = s_.tets[t];
+      double len[4][4] = {}, longest = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) longest = std::max(longest, len[i][j] = norm(sub(X(e[i]), X(e[j]))));
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          if (!(len[i][j] < ratio_ * longest)) continue;
+          for (auto [b, a] : {std::pair{e[i], e[j]}, std::pair{e[j], e[i]}})
+            if (b >= first_new_) {
+              cands.emplace_back(len[i][j], b, a);
+              want[a] = want[b] = 1;
+            }
+        }
+    }
+    if (cands.empty()) return 0;
+    std::sort(cands.begin(), cands.end());
+    cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
+    build_adjacency(want);
+    node_faults_.assign(s_.nodes.size(), {});
+    for (std::size_t i = 0; i < s_.tris.size(); ++i)
+      if (!tri_dead_[i] && s_.tri_group[i] >= s_.first_fault_group)
+        for (auto v : s_.tris[i])
+          if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
+    for (auto& g : node_faults_) std::sort(g.begin(), g.end());
+    std::vector<char> touched(s_.nodes.size(), 0);
+    std::size_t merged = 0;
+    for (const auto& [len, b, a] : cands) {
+      if (node_dead_[b] || node_dead_[a] || touched[b] || touched[a]) continue;
+      if (!try_collapse(b, a)) continue;
+      ++merged;
+      // Incidences around b changed: its neighbourhood waits for the next pass.
+      for (auto t : tets_of_[b])
+        for (auto v : s_.tets[t]) touched[v] = 1;
+    }
+    return merged;
+  }
+
+  bool lies_on(const Surfaces& s, std::uint32_t from, std::uint32_t a) const {
+    for (const auto& pl : s.planes)
+      if (std::abs(dot(pl.n, sub(X(a), pl.p))) > (pl.exact ? round_ : tol_)) return false;
+    const Point3 d = sub(X(a), X(from));
+    for (const auto& l : s.lines)
+      if (norm(cross(d, l.d)) > (l.exact ? round_ : tol_)) return false;
+    return true;
+  }
+
+  // The point nearest to a on every surface and line of a and of b (two cuts that met at a small
+  // angle leave nodes a few tolerances apart on different constraints: the merged node must keep
+  // both). A line through q along l counts as two planes. False when they do not meet near a.
+  bool merged_position(const Surfaces& sa, std::uint32_t a, const Surfaces& sb, std::uint32_t b, double reach, Point3& x) const {
+    struct Con {
+      Point3 n;
+      double c;
+      bool exact;
+    };
+    std::vector<Con> cons;
+    for (const Surfaces* s : {&sa, &sb})
+      for (const auto& pl : s->planes) cons.push_back({pl.n, dot(pl.n, pl.p), pl.exact});
+    for (auto [s, q] : {std::pair{&sa, a}, std::pair{&sb, b}})
+      for (const auto& l : s->lines) {
+        const Point3 t = std::abs(l.d[0]) < 0.9 ? Point3{1, 0, 0} : Point3{0, 1, 0};
+        const Point3 u1 = scaled(cross(l.d, t), 1 / norm(cross(l.d, t)));
+        const Point3 u2 = cross(l.d, u1);
+        cons.push_back({u1, dot(u1, X(q)), l.exact});
+        cons.push_back({u2, dot(u2, X(q)), l.exact});
+      }
+    Eigen::MatrixXd A(cons.size(), 3);
+    Eigen::VectorXd r(cons.size());
+    for (std::size_t i = 0; i < cons.size(); ++i) {
+      for (int k = 0; k < 3; ++k) A(static_cast<Eigen::Index>(i), k) = cons[i].n[k];
+      r(static_cast<Eigen::Index>(i)) = cons[i].c - dot(cons[i].n, X(a));
+    }
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+    cod.setThreshold(1e-6);
+    const Eigen::Vector3d dx = cod.solve(r);
+    x = {X(a)[0] + dx(0), X(a)[1] + dx(1), X(a)[2] + dx(2)};
+    if (!(dx.norm() <= reach)) return false;
+    for (const auto& k : cons)
+      if (std::abs(dot(k.n, x) - k.c) > (k.exact ? round_ : tol_)) return false;
+    return true;
+  }
+
+  bool try_collapse(std::uint32_t b, std::uint32_t a) {
+    // The kept node must lie on b's surfaces and lines (a node on a fault's outline stays on that
+    // line: the fault keeps its extent), moved there if needed (within half the edge, staying on
+    // its own).
+    Surfaces sb, sa;
+    if (!surfaces_of(b, sb) || !surfaces_of(a, sa)) return false;
+    const Point3 xa = X(a);
+    Point3 x = xa;
+    if (!lies_on(sb, b, a) && !merged_position(sa, a, sb, b, 0.5 * norm(sub(X(b), xa)), x)) return false;
+    const bool moves = x[0] != xa[0] || x[1] != xa[1] || x[2] != xa[2];
+    double before = std::numeric_limits<double>::infinity();
+    if (moves)
+      for (auto t : tets_of_[a]) before = std::min(before, score(t, s_.tets[t]));
+    std::vector<std::pair<std::uint32_t, Tet>> changed;
+    for (auto t : tets_of_[b]) {
+      before = std::min(before, score(t, s_.tets[t]));
+      if (has(s_.tets[t], a)) continue;
+      auto e = s_.tets[t];
+      std::replace(e.begin(), e.end(), b, a);
+      changed.push_back({t, e});
+    }
+    s_.nodes[a] = x;
+    auto undo = [&] {
+      s_.nodes[a] = xa;
+      return false;
+    };
+    double after = std::numeric_limits<double>::infinity();
+    for (const auto& [t, e] : changed) {
+      if (!(tet_signed_volume(X(e[0]), X(e[1]), X(e[2]), X(e[3])) > 0)) return undo();
+      after = std::min(after, score(t, e));
+    }
+    for (auto t : tets_of_[a]) {  // a's own tetrahedra, when it moved
+      if (!moves || has(s_.tets[t], b)) continue;
+      const auto& e = s_.tets[t];
+      if (!(tet_signed_volume(X(e[0]), X(e[1]), X(e[2]), X(e[3])) > 0)) return undo();
+      after = std::min(after, score(t, e));
+    }
+    if (!(after > before)) return undo();
+    // Conforming around a: no face of three tetrahedra, no element twice.
+    std::map<Face, int> uses;
+    std::set<Tet> elems;
+    auto add_tet = [&](const Tet& e) {
+      Tet k = e;
+      std::sort(k.begin(), k.end());
+      if (!elems.insert(k).second) return undo();
+      for (const auto& f : kFaceOf)
+        if (++uses[sorted({e[f[0]], e[f[1]], e[f[2]]})] > 2) return undo();
+      return true;
+    };
+    for (auto t : tets_of_[a])
+      if (!has(s_.tets[t], b) && !add_tet(s_.tets[t])) return undo();
+    for (const auto& [t, e] : changed)
+      if (!add_tet(e)) return undo();
+    std::set<Face> tris;
+    for (auto i : tris_of_[a])
+      if (!has(s_.tris[i], b)) tris.insert(sorted(s_.tris[i]));
+    std::vector<std::pair<std::uint32_t, Face>> changed_tris;
+    for (auto i : tris_of_[b]) {
+      if (has(s_.tris[i], a)) continue;
+      Face f = s_.tris[i];
+      std::replace(f.begin(), f.end(), b, a);
+      if (!tris.insert(sorted(f)).second) return undo();
+      const Face& o = s_.tris[i];  // same orientation (a fault's faces face its hanging wall)
+      if (!(dot(cross(sub(X(o[1]), X(o[0])), sub(X(o[2]), X(o[0]))), cross(sub(X(f[1]), X(f[0])), sub(X(f[2]), X(f[0])))) > 0))
+        return undo();
+      changed_tris.push_back({i, f});
+    }
+    // No tetrahedron with its four nodes on one fault (a takes b's faults along).
+    std::vector<std::uint32_t> fa = node_faults_[a];
+    for (auto g : node_faults_[b])
+      if (!has(fa, g)) fa.push_back(g);
+    std::sort(fa.begin(), fa.end());
+    for (const auto& [t, e] : changed) {
+      std::vector<std::uint32_t> common = fa;
+      for (auto w : e) {
+        if (w == a) continue;
+        std::vector<std::uint32_t> next;
+        std::set_intersection(common.begin(), common.end(), node_faults_[w].begin(), node_faults_[w].end(),
+                              std::back_inserter(next));
+        common = std::move(next);
+      }
+      if (!common.empty()) return undo();
+    }
+    for (auto t : tets_of_[b])
+      if (has(s_.tets[t], a)) tet_dead_[t] = 1;
+    for (auto i : tris_of_[b])
+      if (has(s_.tris[i], a)) tri_dead_[i] = 1;
+    for (const auto& [t, e] : changed) s_.tets[t] = e;
+    for (const auto& [i, f] : changed_tris) s_.tris[i] = f;
+    node_faults_[a] = std::move(fa);
+    node_dead_[b] = 1;
+    return true;
+  }
+
+  // ---- 2. smoothing ---------------------------------------------------------------------------
+  std::size_t smoothing_pass() {
+    std::vector<char> want(s_.nodes.size(), 0);
+    std::vector<std::pair<double, std::uint32_t>> order;  // (worst angle, node)
+    std::vector<double> worst(s_.nodes.size(), 180);
+    for (std::size_t t = 0; t < s_.tets.size(); ++t) {
+      if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
+      const double q = score(static_cast<std::uint32_t>(t), s_.tets[t]);
+      if (!(q < 1) && !(quality(s_.tets[t]) < smooth_below_)) continue;
+      for (auto v : s_.tets[t])
+        if (!node_dead_[v]) {
+          want[v] = 1;
+          worst[v] = std::min(worst[v], q);
+        }
+    }
+    for (std::size_t v = 0; v < want.size(); ++v)
+      if (want[v]) order.push_back({worst[v], static_cast<std::uint32_t>(v)});
+    if (order.empty()) return 0;
+    std::sort(order.begin(), order.end());
+    build_adjacency(want);
+    std::size_t moved = 0;
+    for (const auto& [q, v] : order) moved += smooth(v);
+    return moved;
+  }
+
+  bool smooth(std::uint32_t v) {
+    Surfaces s;
+    if (!surfaces_of(v, s)) return false;
+    // The directions v may move in: within every plane and along its feature line, if any (exact
+    // surfaces to rounding, faults to kParallel).
+    std::vector<Point3> normals;
+    for (const auto& pl : s.planes) {
+      Point3 r = pl.n;
+      for (const auto& b : normals) r = sub(r, scaled(b, dot(b, r)));
+      if (norm(r) > (pl.exact ? 1e-9 : kParallel)) normals.push_back(scaled(r, 1 / norm(r)));
+      if (normals.size() == 3) return false;
+    }
+    const Line* line = nullptr;
+    for (const auto& l : s.lines) {
+      if (!line) line = &l;
+      else if (norm(cross(line->d, l.d)) > (l.exact || line->exact ? 1e-9 : kParallel)) return false;  // a corner
+    }
+    Point3 mean{0, 0, 0};
+    std::set<std::uint32_t> nb;
+    for (auto t : tets_of_[v])
+      for (auto w : s_.tets[t])
+        if (w != v) nb.insert(w);
+    for (auto w : nb) mean = add(mean, scaled(X(w), 1.0 / static_cast<double>(nb.size())));
+    Point3 d = sub(mean, X(v));
+    if (!line) {
+      for (const auto& n : normals) d = sub(d, scaled(n, dot(n, d)));
+    } else {
+      // Along the feature line, if it lies in every plane (else it crosses one there: a corner).
+      for (const auto& pl : s.planes)
+        if (std::abs(dot(pl.n, line->d)) > (pl.exact || line->exact ? 1e-9 : kParallel)) return false;
+      d = scaled(line->d, dot(d, line->d));
+    }
+    if (!(norm(d) > 0)) return false;
+    double before = std::numeric_limits<double>::infinity();
+    for (auto t : tets_of_[v]) before = std::min(before, score(t, s_.tets[t]));
+    const Point3 x0 = X(v);
+    for (double step : {1.0, 0.5, 0.25, 0.125}) {
+      s_.nodes[v] = add(x0, scaled(d, step));
+      bool ok = true;
+      double after = std::numeric_limits<double>::infinity();
+      for (auto t : tets_of_[v]) {
+        const auto& e = s_.tets[t];
+        if (!(tet_signed_volume(X(e[0]), X(e[1]), X(e[2]), X(e[3])) > 0)) {
+          ok = false;
+          break;
+        }
+        after = std::min(after, score(t, e));
+      }
+      // Exact surfaces keep the node to rounding, faults within the tolerance.
+      for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
+      if (ok && after > before) {
+        return true;
+      }
+    }
+    s_.nodes[v] = x0;
+    return false;
+  }
+
+  void compact() {
+    std::vector<std::uint32_t> to(s_.nodes.size());
+    std::size_t n = 0;
+    for (std::size_t v = 0; v < s_.nodes.size(); ++v) {
+      if (v >= first_new_ && node_dead_[v]) continue;
+      to[v] = static_cast<std::uint32_t>(n);
+      s_.nodes[n++] = s_.nodes[v];
+    }
+    s_.nodes.resize(n);
+    std::size_t k = 0;
+    for (std::size_t t = 0; t < s_.tets.size(); ++t) {
+      if (tet_dead_[t]) continue;
+      for (auto& v : s_.tets[t]) v = to[v];
+      s_.tets[k] = s_.tets[t];
+      s_.tet_parent[k] = s_.tet_parent[t];
+      s_.tet_block[k++] = s_.tet_block[t];
+    }
+    s_.tets.resize(k);
+    s_.tet_block.resize(k);
+    s_.tet_parent.resize(k);
+    k = 0;
+    for (std::size_t i = 0; i < s_.tris.size(); ++i) {
+      if (tri_dead_[i]) continue;
+      for (auto& v : s_.tris[i]) v = to[v];
+      s_.tris[k] = s_.tris[i];
+      s_.tri_group[k++] = s_.tri_group[i];
+    }
+    s_.tris.resize(k);
+    s_.tri_group.resize(k);
+  }
+
+  ElementSoup s_;
+  std::size_t first_new_;
+  double ratio_, smooth_below_, tol_;
+  double round_;  // "to rounding": a thousandth of the on-plane tolerance (1e-10 of the model's size)
+  std::vector<char> tet_dead_, tri_dead_, node_dead_;
+  std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;
+  std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
+};
+
+}  // namespace
+
+BandImprovement improve_cut_band(ElementSoup soup, std::size_t first_new, double ratio, double smooth_below_deg, double tol) {
+  if (first_new >= soup.nodes.size()) return {};
+  return BandImprover(soup, first_new, ratio, smooth_below_deg, tol).run();
+}
+
+}  // namespace ugs

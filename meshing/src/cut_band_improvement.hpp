@@ -1,0 +1,50 @@
+// Quality of the tetrahedra a fault cut made (docs/dipping-faults.md, steps 5 and 6). Internal to
+// ugs_meshing: fault_cut.cpp calls it on its element arrays before writing the mesh back.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "ugs/formats/mesh.hpp"
+
+namespace ugs {
+
+// A tetrahedral mesh as flat arrays: nodes, tetrahedra (positive volume) with their block,
+// triangles (boundary and other groups) with their group; groups from `first_fault_group` on are
+// faults (no tetrahedron may have its four nodes on one of them: ugs-faultinsert would tear it).
+struct ElementSoup {
+  std::vector<Point3>& nodes;
+  std::vector<std::array<std::uint32_t, 4>>& tets;
+  std::vector<std::uint32_t>& tet_block;
+  std::vector<std::uint32_t>& tet_parent;  // the input tetrahedron each one comes from
+  std::vector<std::array<std::uint32_t, 3>>& tris;
+  std::vector<std::uint32_t>& tri_group;
+  std::uint32_t first_fault_group;
+  const std::vector<double>& parent_quality;  // smallest dihedral angle of each input tetrahedron (by tet_parent)
+  double bound_deg;                           // see score() in the .cpp and FaultCutOptions::bound_deg
+};
+
+struct BandImprovement {
+  std::size_t collapsed = 0;  // nodes merged into a neighbour across a short edge
+  std::size_t moved = 0;      // node moves by smoothing
+};
+
+// Improves the band of tetrahedra holding a node numbered `first_new` or above (the cut's nodes).
+// Every change keeps each node on all its surfaces (the planes of its triangles and of the faces
+// between materials, within `tol`) and feature lines (a group's boundary or crease), so the
+// model, its groups, the material volumes and the faults keep their shape exactly; and every
+// change raises the worst quality among the tetrahedra it touches, with positive volumes (quality:
+// smallest dihedral angle over min(bound_deg, that of the input tetrahedron)).
+//  1. Collapse: a cut node is merged into a neighbour across an edge shorter than `ratio` times
+//     the longest edge of a tetrahedron holding it, when the neighbour lies on all the node's
+//     surfaces and lines and the result stays conforming (no face of three tetrahedra, no element
+//     twice, no tetrahedron with its four nodes on one fault). Merged nodes are deleted (the nodes
+//     from `first_new` on are renumbered).
+//  2. Smoothing: a node of a band tetrahedron below that bound, or with a dihedral angle below
+//     `smooth_below_deg`, moves toward the mean of its neighbours, within its surfaces, by the largest of 1, 1/2, 1/4,
+//     1/8 of the way that raises the smallest dihedral angle of its tetrahedra.
+BandImprovement improve_cut_band(ElementSoup soup, std::size_t first_new, double ratio, double smooth_below_deg, double tol);
+
+}  // namespace ugs
