@@ -1,7 +1,7 @@
 #!/bin/bash
 # Hypo-plastic history on the po-plain demo mesh (docs/mechanics.md, "Speed of the hypo-plastic
 # history"): the first five monthly steps, per-step times, Newton / CG iterations and PETSc's
-# -log_view (events UgsResidual, UgsAssembly, UgsPredictor). UGS_DEBUG=1 prints every Newton
+# -log_view (events UgsResidual, UgsAssembly, UgsPredictor). `-ugs_newton_monitor` (after --) prints every Newton
 # iteration (residual, linear tolerance, branch changes).
 #   bench/solve/history.sh BUILD_DIR DEMO_DIR [NPROC] [UNTIL]
 # DEMO_DIR holds model.msh, pool_a_dp.h5, pool_c_dp.h5 (the lead's demo pipeline, build/demo).

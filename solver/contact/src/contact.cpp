@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <numeric>
 
@@ -18,6 +17,16 @@
 
 namespace ugs::contact {
 namespace {
+
+// -ugs_contact_monitor: every node pair that changes state (stick, slip, open) in an iteration.
+bool contact_monitor() {
+  static const bool on = [] {
+    PetscBool has = PETSC_FALSE;
+    PetscOptionsHasName(nullptr, nullptr, "-ugs_contact_monitor", &has);
+    return has == PETSC_TRUE;
+  }();
+  return on;
+}
 
 // What the owner of a pair needs to know about it (sent from rank 0 as bytes).
 struct PairData {
@@ -330,7 +339,7 @@ struct FaultContact::Impl {
       eq[q] = pair_equations(law(q), lam[q], lam0, lam_c[q], g[q], gc[q], d.p0 + dp_now[q], st_prev[q]);
       st[q] = eq[q].state;
       changed_last[q] = st[q] != st_prev[q];
-      if (changed_last[q] && std::getenv("UGS_DEBUG"))
+      if (changed_last[q] && contact_monitor())
         std::fprintf(stderr, "    pair %d (%.0f %.0f %.0f): %s -> %s  lam %.3e %.3e %.3e g %.3e %.3e %.3e p %.3e\n", q, d.x[0], d.x[1],
                      d.x[2], pair_state_name(st_prev[q]), pair_state_name(st[q]), lam[q][0], lam[q][1], lam[q][2], g[q][0],
                      g[q][1], g[q][2], d.p0 + dp_now[q]);

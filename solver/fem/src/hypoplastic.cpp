@@ -100,7 +100,7 @@ HypoResult hypo_integrate(const HypoParams& p, const HypoState& st, double s0, d
   r.state = st;
   const int dir = J > 0 ? +1 : J < 0 ? -1 : (guess >= 0 ? +1 : -1);
   // The direction that selects the inversion stress: a held branch keeps the one it was held with.
-  const int dir_inv = hold == Hold::Virgin ? +1 : hold == Hold::UnloadReload ? (guess >= 0 ? +1 : -1) : dir;
+  const int dir_inv = hold == Hold::UnloadReload ? (guess >= 0 ? +1 : -1) : dir;
   // A change of direction is a load inversion at s0.
   const double s_inv = dir_inv != st.direction ? s0 : st.sigma_inv;
   const Branch virgin = virgin_branch(p), ur = ur_branch(p, st, s_inv);
@@ -109,16 +109,8 @@ HypoResult hypo_integrate(const HypoParams& p, const HypoState& st, double s0, d
   // The knee: reloading reaches sigma_max at J_knee (at sigma_max already: J = 0).
   const double s_knee = below ? st.sigma_max : s0;
   r.J_knee = below ? ur.integral(s0, st.sigma_max) : 0.0;
-  bool on_virgin = false;
-  if (hold == Hold::UnloadReload) {
-    on_virgin = false;
-  } else if (hold == Hold::Virgin) {
-    on_virgin = true;
-  } else {
-    on_virgin = dir > 0 && (J > r.J_knee || (!below && J == 0));
-  }
+  const bool on_virgin = hold == Hold::None && dir > 0 && (J > r.J_knee || (!below && J == 0));
   if (on_virgin) {
-    // (held: the virgin curve continued below the knee)
     r.sigma1 = virgin.solve(s_knee, J - r.J_knee);
     r.c_tangent = virgin.c(r.sigma1);
     r.phase = LoadingPhase::Virgin;
@@ -137,7 +129,7 @@ HypoResult hypo_integrate(const HypoParams& p, const HypoState& st, double s0, d
   if (J == 0 || std::abs(ds) <= 1e-9 * std::max(std::abs(s0), 1.0)) {
     // Vanishing step: the secant is the tangent of the branch at the midpoint (exact to O(ds^2)).
     const double mid = 0.5 * (s0 + r.sigma1);
-    r.c_secant = on_virgin && (hold == Hold::Virgin || !below) ? virgin.c(mid) : ur.c(mid);
+    r.c_secant = on_virgin && !below ? virgin.c(mid) : ur.c(mid);
     if (J == 0) r.c_tangent = r.c_secant;
   } else {
     r.c_secant = J / ds;

@@ -52,7 +52,8 @@ enum class LoadingPhase : int { Elastic = 0, Virgin = 1, Unloading = 2, Reloadin
 // whole Dhat scales with 1/c). Held, the element follows the analytic continuation of that branch
 // through the knee, so the residual is smooth; the solver checks at convergence that the held
 // branch agrees with the side of the knee the element ended on (docs/mechanics.md).
-enum class Hold : int { None = 0, Virgin = 1, UnloadReload = 2 };
+// (The stiffer branch is the one Newton converges with: the softer one overshoots.)
+enum class Hold : int { None = 0, UnloadReload = 2 };
 
 struct HypoResult {
   double sigma1 = 0;     // MPa

@@ -1,0 +1,226 @@
+// Loads, residual and tangent assembly of the mechanics solver (solver_impl.hpp).
+#include "solver_impl.hpp"
+
+namespace ugs::mech {
+
+void MechanicsSolver::Impl::external_force(const std::vector<double>& dp) {
+  std::fill(fext.begin(), fext.end(), 0.0);
+  for (std::size_t c = 0; c < lm.n_cells(); ++c) {
+    const double dpe = lm.materials[lm.cell_material[c]].biot * dp[c];
+    if (dpe == 0) continue;
+    const double w = std::abs(geo[c].volume) * dpe;
+    double fe[12];
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) fe[3 * i + k] = w * geo[c].grad[i][k];
+    add_owned(fext, static_cast<int>(c), fe);
+  }
+}
+
+double MechanicsSolver::Impl::residual() {
+  PetscLogEventBegin(events().residual, 0, 0, 0, 0);
+  UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
+  UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
+  Vec ul;
+  const PetscScalar* ua = nullptr;
+  UGS_PETSC(VecGhostGetLocalForm(u, &ul));
+  UGS_PETSC(VecGetArrayRead(ul, &ua));
+  std::fill(fint.begin(), fint.end(), 0.0);
+  bool sat = false;
+  for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
+    const int c = static_cast<int>(ci);
+    double ue[12];
+    gather_element(ua, c, ue);
+    const Vec6 eps = fem::tet4_strain(geo[c], ue);
+    Vec6 ds;
+    const int h = hyp_of_cell[c];
+    if (h < 0) {
+      ds = elastic_stress(c, eps);
+    } else {
+      trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], committed[h], start_sigma(h), eps,
+                                  hold[h] == fem::Hold::None ? guess[h] : hold_dir[h], hold[h],
+                                  fem::TangentForm::Consistent);
+      trial_eps[h] = eps;
+      ds = trial[h].dsig;
+      sat = sat || trial[h].saturated;
+    }
+    double fe[12] = {};
+    fem::tet4_add_internal_force(geo[c], ds, fe);
+    add_owned(fint, c, fe);
+  }
+  saturated = sat;
+  UGS_PETSC(VecRestoreArrayRead(ul, &ua));
+  UGS_PETSC(VecGhostRestoreLocalForm(u, &ul));
+  PetscScalar* ra = nullptr;
+  UGS_PETSC(VecGetArray(r, &ra));
+  for (int a = 0; a < lm.n_owned; ++a)
+    for (int k = 0; k < 3; ++k) ra[3 * a + k] = owned_dof_fixed(a, k) ? 0.0 : fext[3 * a + k] - fint[3 * a + k];
+  UGS_PETSC(VecRestoreArray(r, &ra));
+  const double extra = coupling ? coupling->residual(u, r) : 0.0;
+  PetscReal norm = 0;
+  UGS_PETSC(VecNorm(r, NORM_2, &norm));
+  PetscLogEventEnd(events().residual, 0, 0, 0, 0);
+  return coupling ? std::sqrt(norm * norm + extra) : norm;
+}
+
+void MechanicsSolver::Impl::scatter(std::vector<double>& v, int c, const std::array<double, 144>& Ke, bool diag_too) {
+  const auto& t = lm.cells[c];
+  for (int i = 0; i < 4; ++i) {
+    const int a = t[i];
+    if (a >= lm.n_owned) continue;
+    const PetscInt nb = node_ptr[a], d = node_ptr[a + 1] - nb;
+    const std::int64_t* row = node_cols.data() + nb;
+    for (int j = 0; j < 4; ++j) {
+      const int b = t[j];
+      const PetscInt k = static_cast<PetscInt>(std::lower_bound(row, row + d, lm.global[b]) - row);
+      for (int ci = 0; ci < 3; ++ci) {
+        if (diag_too && i == j) diag_scale[3 * a + ci] += Ke[(3 * i + ci) * 12 + 3 * j + ci];
+        if ((lm.fixed[a] >> ci) & 1) continue;
+        double* dst = v.data() + 9 * nb + ci * 3 * d + 3 * k;
+        for (int e = 0; e < 3; ++e)
+          if (!((lm.fixed[b] >> e) & 1)) dst[e] += Ke[(3 * i + ci) * 12 + 3 * j + e];
+      }
+    }
+  }
+}
+
+void MechanicsSolver::Impl::set_constrained_diagonal(std::vector<double>& v) const {
+  for (int a = 0; a < lm.n_owned; ++a) {
+    if (!lm.fixed[a]) continue;
+    const PetscInt nb = node_ptr[a], d = node_ptr[a + 1] - nb;
+    const std::int64_t* row = node_cols.data() + nb;
+    const PetscInt k = static_cast<PetscInt>(std::lower_bound(row, row + d, lm.global[a]) - row);
+    for (int ci = 0; ci < 3; ++ci)
+      if ((lm.fixed[a] >> ci) & 1) {
+        const double s = diag_scale[3 * a + ci];
+        v[9 * nb + ci * 3 * d + 3 * k + ci] = s > 0 ? s : 1.0;
+      }
+  }
+}
+
+void MechanicsSolver::Impl::assemble() {
+  bool changed = !mat_created;
+  if (!have_lin) {
+    vals_lin.assign(cols.size(), 0.0);
+    diag_scale.assign(3 * lm.n_owned, 0.0);
+    for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
+      const int c = static_cast<int>(ci);
+      if (hyp_of_cell[c] >= 0) {
+        scatter_dummy_diag(c);
+        continue;
+      }
+      scatter(vals_lin, c, fem::tet4_stiffness(geo[c], elastic_D(c)), true);
+    }
+    have_lin = true;
+  }
+  // Only the elements whose tangent changed materially are updated (their stiffness difference
+  // is added): the matrix is a quasi-Newton tangent anyway, and most elements change by little
+  // between iterations. A full assembly every kFullAssemblyEvery updates keeps the sums fresh.
+  const bool full = changed || updates_since_full >= kFullAssemblyEvery;
+  std::vector<std::int32_t> stale;
+  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+    if (std::memcmp(tangent(h).data(), assembled_Dt[h].data(), sizeof(fem::Mat6)) == 0) continue;
+    if (full) {
+      changed = true;
+      break;
+    }
+    if (relative_change(tangent(h), assembled_Dt[h]) > kTangentChange) stale.push_back(static_cast<std::int32_t>(h));
+  }
+  int mine = changed || !stale.empty() ? 1 : 0, any = 0;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
+  if (!any) return;
+  PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
+  if (full) {
+    vals = vals_lin;
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+      scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], tangent(h)), false);
+      assembled_Dt[h] = tangent(h);
+      assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
+    }
+    set_constrained_diagonal(vals);  // (scatter never touches prescribed rows or columns)
+    updates_since_full = 0;
+  } else {
+    for (const auto h : stale) {
+      fem::Mat6 dD;
+      for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembled_Dt[h][i];
+      scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], dD), false);
+      assembled_Dt[h] = tangent(h);
+      assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
+    }
+    ++updates_since_full;
+  }
+  upload();
+  if (!has_hyp) {
+    // The matrix can never change: the assembly arrays are not needed again.
+    std::vector<double>().swap(vals);
+    std::vector<double>().swap(vals_lin);
+    std::vector<PetscInt>().swap(cols);
+  }
+  PetscLogEventEnd(events().assembly, 0, 0, 0, 0);
+}
+
+double MechanicsSolver::Impl::relative_change(const fem::Mat6& a, const fem::Mat6& b) {
+  double d = 0, n = 0;
+  for (int i = 0; i < 36; ++i) d = std::max(d, std::abs(a[i] - b[i])), n = std::max(n, std::abs(b[i]));
+  return n > 0 ? d / n : (d > 0 ? 1.0 : 0.0);
+}
+
+void MechanicsSolver::Impl::scatter_dummy_diag(int c) {
+  const fem::Material& m = lm.materials[lm.cell_material[c]];
+  fem::Mat6 D;
+  const double ic = 1e6 / m.hypo.cm(s0[c]);
+  for (int i = 0; i < 36; ++i) D[i] = m.Dhat[i] * ic;
+  const auto Ke = fem::tet4_stiffness(geo[c], D);
+  const auto& t = lm.cells[c];
+  for (int i = 0; i < 4; ++i)
+    if (t[i] < lm.n_owned)
+      for (int ci = 0; ci < 3; ++ci) diag_scale[3 * t[i] + ci] += Ke[(3 * i + ci) * 12 + 3 * i + ci];
+}
+
+void MechanicsSolver::Impl::upload() {
+  const PetscInt m = 3 * lm.n_owned;
+  if (!mat_created) {
+    UGS_PETSC(MatCreate(lm.comm, &A));
+    UGS_PETSC(MatSetSizes(A, m, m, PETSC_DETERMINE, PETSC_DETERMINE));
+    UGS_PETSC(MatSetBlockSize(A, 3));
+    UGS_PETSC(MatSetType(A, MATAIJ));
+    if (lm.size == 1) {
+      UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+    } else {
+      UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+    }
+    UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+    UGS_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+    if (!has_hyp) {
+      UGS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
+      UGS_PETSC(MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+      UGS_PETSC(MatSetOption(A, MAT_SPD, PETSC_TRUE));
+    }
+    // Rigid-body modes from the owned node coordinates: the near-null space of elasticity.
+    Vec xyz;
+    UGS_PETSC(VecCreateMPI(lm.comm, m, PETSC_DETERMINE, &xyz));
+    UGS_PETSC(VecSetBlockSize(xyz, 3));
+    PetscScalar* a = nullptr;
+    UGS_PETSC(VecGetArray(xyz, &a));
+    for (int k = 0; k < lm.n_owned; ++k)
+      for (int c = 0; c < 3; ++c) a[3 * k + c] = lm.x[k][c];
+    UGS_PETSC(VecRestoreArray(xyz, &a));
+    MatNullSpace nsp;
+    UGS_PETSC(MatNullSpaceCreateRigidBody(xyz, &nsp));
+    UGS_PETSC(MatSetNearNullSpace(A, nsp));
+    UGS_PETSC(MatNullSpaceDestroy(&nsp));
+    UGS_PETSC(VecDestroy(&xyz));
+    UGS_PETSC(KSPSetOperators(ksp, A, A));
+    mat_created = true;
+  } else {
+    for (PetscInt i = 0; i < m; ++i) {
+      const PetscInt row = static_cast<PetscInt>(3 * lm.node_begin) + i;
+      UGS_PETSC(MatSetValues(A, 1, &row, rowptr[i + 1] - rowptr[i], cols.data() + rowptr[i], vals.data() + rowptr[i],
+                             INSERT_VALUES));
+    }
+    UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  mat_changed = true;
+}
+
+}  // namespace ugs::mech

@@ -1,0 +1,251 @@
+// One load step: Newton with the knee holds, sub-stepping, commit (solver_impl.hpp, docs/mechanics.md).
+#include "solver_impl.hpp"
+
+namespace ugs::mech {
+namespace {
+
+// -ugs_newton_monitor: every Newton iteration (linear tolerance and iterations, residual, the
+// elements on each branch and held at the knee).
+bool newton_monitor() {
+  static const bool on = [] {
+    PetscBool has = PETSC_FALSE;
+    PetscOptionsHasName(nullptr, nullptr, "-ugs_newton_monitor", &has);
+    return has == PETSC_TRUE;
+  }();
+  return on;
+}
+
+}  // namespace
+
+bool MechanicsSolver::Impl::branches_moved() const {
+  long long mine = 0, all = 0;
+  for (std::size_t h = 0; h < assembled_phase.size(); ++h) mine += assembled_phase[h] != pc_phase[h];
+  MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
+  return static_cast<double>(all) > 0.005 * static_cast<double>(n_hyp_global);
+}
+
+bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepReport& rep, std::string& why) {
+  external_force(dp_target);
+  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+    // First tangent: the element keeps its direction unless its pressure change reverses.
+    const double d = dp_target[hyp_cells[h]] - dp_cell[hyp_cells[h]];
+    const int sd = d < 0 ? -1 : d > 0 ? +1 : 0, dir = committed[h].hypo.direction;
+    guess[h] = static_cast<std::int8_t>(sd != 0 && sd != last_ddp[h] ? -dir : dir);
+    piece[h] = 0;
+    flips[h] = 0;
+    hold[h] = fem::Hold::None;
+  }
+  UGS_PETSC(VecCopy(u, u_save));
+  rep.residuals.clear();
+  const double r0 = residual();
+  rep.residuals.push_back(1.0);
+  if (r0 == 0) return true;
+  double rk = r0, rprev = r0;
+  // A step is nonlinear if an element is on the virgin branch or is expected to change direction.
+  int nonlinear = 0;
+  for (std::size_t h = 0; h < hyp_cells.size() && !nonlinear; ++h)
+    nonlinear = guess[h] != committed[h].hypo.direction ||
+                (guess[h] > 0 && start_sigma(static_cast<int>(h)) >= committed[h].hypo.sigma_max * (1 - 1e-9)) ||
+                lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule == fem::InversionRule::StressDependent;
+  int any_nonlinear = 0;
+  MPI_Allreduce(&nonlinear, &any_nonlinear, 1, MPI_INT, MPI_MAX, lm.comm);
+  double eta = any_nonlinear || coupling ? 1e-4 : 0.0;
+  for (int k = 1; k <= opt.max_newton; ++k) {
+    assemble();
+    // Inexact Newton (Eisenstat-Walker): no sharper than the nonlinearity warrants, but never
+    // looser than what reaches the target in one more iteration of a linear problem.
+    const double floor_rtol = 0.5 * opt.tolerance * r0 / rk;
+    const double rtol = std::min(0.5, std::max(floor_rtol, eta));
+    const int setups_before = pc_setups;
+    const bool guess = !coupling && k == 1 && predict();
+    SolveResult s;
+    if (coupling) {
+      const CouplingSolve cs = coupling->solve(A, r, du, rtol);
+      s.iterations = cs.iterations;
+      if (!cs.ok) {
+        why = cs.failure;
+        return false;
+      }
+    } else {
+      s = solve(rtol, guess);
+    }
+    rep.linear_iterations += s.iterations;
+    rep.preconditioner_setups += pc_setups - setups_before;
+    ++rep.newton_iterations;
+    if (s.reason < 0 && !(s.reason == KSP_DIVERGED_ITS && s.reduction < 0.5)) {
+      why = fmt::format("linear solver failed ({}) after {} iterations", KSPConvergedReasons[s.reason], s.iterations);
+      return false;
+    }
+    UGS_PETSC(VecAXPY(u, 1.0, du));
+    rprev = rk;
+    std::vector<int> before(hyp_cells.size());
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h) before[h] = static_cast<int>(trial[h].phase);
+    rk = residual();
+    track_branches();
+    long long moved = 0, moved_all = 0;
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h) moved += before[h] != static_cast<int>(trial[h].phase);
+    MPI_Allreduce(&moved, &moved_all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
+    if (newton_monitor()) {
+      long long c[4] = {0, 0, 0, 0};  // owned elements: virgin, unloading, reloading, held
+      for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+        if (!lm.cell_owned[hyp_cells[h]]) continue;
+        c[0] += trial[h].phase == fem::LoadingPhase::Virgin;
+        c[1] += trial[h].phase == fem::LoadingPhase::Unloading;
+        c[2] += trial[h].phase == fem::LoadingPhase::Reloading;
+        c[3] += hold[h] != fem::Hold::None;
+      }
+      MPI_Allreduce(MPI_IN_PLACE, c, 4, MPI_LONG_LONG, MPI_SUM, lm.comm);
+      UGS_PETSC(PetscPrintf(lm.comm,
+                            "  Newton %d: linear rtol %.1e, %d iterations; residual %.3e; branch changes %lld (virgin %lld, "
+                            "unloading %lld, reloading %lld), held %lld\n",
+                            k, rtol, static_cast<int>(s.iterations), rk / r0, moved_all, c[0], c[1], c[2], c[3]));
+    }
+    rep.residuals.push_back(rk / r0);
+    if (!std::isfinite(rk)) {
+      why = "the residual is not finite";
+      return false;
+    }
+    if (rk <= opt.tolerance * r0 && (!coupling || coupling->settled())) {
+      rep.off_branch = std::max(rep.off_branch, held_off_branch() / r0);
+      return true;
+    }
+    if (rk > 1e4 * r0) {
+      why = "Newton diverged";
+      return false;
+    }
+    if (coupling) {
+      why = coupling->stalled();
+      if (!why.empty()) return false;
+    }
+    if (has_hyp || coupling) eta = std::min(0.1, 0.9 * (rk / rprev) * (rk / rprev));
+    // While elements still change branch the next residual is set by them, not by the accuracy
+    // of the linear solve: a sharper solve would be wasted.
+    if (moved_all > 0) eta = std::max(eta, 1e-2);
+  }
+  int sat = saturated ? 1 : 0, any_sat = 0;
+  MPI_Allreduce(&sat, &any_sat, 1, MPI_INT, MPI_MAX, lm.comm);
+  why = fmt::format("Newton did not converge in {} iterations{}", opt.max_newton,
+                    any_sat ? " (the virgin compressibility law cannot absorb the strain of some elements)" : "");
+  if (coupling) why += coupling->diagnosis();
+  return false;
+}
+
+void MechanicsSolver::Impl::track_branches() {
+  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+    const auto p = static_cast<std::int8_t>(trial[h].phase);
+    if (piece[h] != 0 && p != piece[h] && ++flips[h] >= 2 && hold[h] == fem::Hold::None) {
+      hold[h] = fem::Hold::UnloadReload;
+      hold_dir[h] = static_cast<std::int8_t>(trial[h].J > 0 ? +1 : trial[h].J < 0 ? -1 : guess[h]);
+    }
+    piece[h] = p;
+  }
+}
+
+double MechanicsSolver::Impl::held_off_branch() {
+  double mine = 0;
+  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+    if (hold[h] == fem::Hold::None) continue;
+    const double delta = trial[h].J - trial[h].J_knee;
+    const bool wrong = delta > 0;  // held on unloading/reloading, ended beyond the knee
+    if (!wrong) continue;
+    const int c = hyp_cells[h];
+    if (lm.cell_owned[c]) {
+      const fem::Material& m = lm.materials[lm.cell_material[c]];
+      Vec6 ds;
+      for (int i = 0; i < 6; ++i) ds[i] = delta * m.Dhat[6 * i + ZZ] * 1e6 / trial[h].c_tangent;
+      double fe[12] = {};
+      fem::tet4_add_internal_force(geo[c], ds, fe);
+      double n2 = 0;
+      for (double f : fe) n2 += f * f;
+      mine += std::sqrt(n2);
+    }
+  }
+  double all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, lm.comm);
+  return all;
+}
+
+void MechanicsSolver::Impl::commit(const std::vector<double>& dp_target) {
+  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+    const double d = dp_target[hyp_cells[h]] - dp_cell[hyp_cells[h]];
+    if (d != 0) last_ddp[h] = d < 0 ? -1 : +1;
+    committed[h].eps = trial_eps[h];
+    committed[h].dsig = trial[h].dsig;
+    committed[h].hypo = trial[h].hypo;
+    committed_phase[h] = trial[h].phase;
+    committed_c[h] = trial[h].c_tangent;
+  }
+  dp_cell = dp_target;
+}
+
+void MechanicsSolver::Impl::restore_u() {
+  UGS_PETSC(VecCopy(u_save, u));
+  UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
+  UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
+}
+
+StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, const std::string& label) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StepReport rep;
+  rep.substeps = 0;
+  // Every rank needs the pressure change of its elements.
+  std::vector<double> dp_all;
+  std::uint64_t n = lm.rank == 0 ? dp_rank0.size() : 0;
+  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, lm.comm);
+  if (n != static_cast<std::uint64_t>(lm.n_global_cells))
+    throw std::logic_error("MechanicsSolver::advance: pressure vector of wrong size");
+  dp_all.resize(n);
+  if (lm.rank == 0) std::copy(dp_rank0.begin(), dp_rank0.end(), dp_all.begin());
+  MPI_Bcast(dp_all.data(), static_cast<int>(n), MPI_DOUBLE, 0, lm.comm);
+  std::vector<double> target(lm.n_cells());
+  for (std::size_t c = 0; c < lm.n_cells(); ++c) target[c] = dp_all[lm.cell_index[c]];
+  dp_all = {};
+
+  // A failed step leaves the state of the previous one (committed sub-steps are undone).
+  const std::vector<double> start = dp_cell;
+  const auto committed_start = committed;
+  const auto phase_start = committed_phase;
+  const auto c_start = committed_c;
+  UGS_PETSC(VecCopy(u, u_step));
+  if (coupling) coupling->begin_step();
+  double done = 0, h = 1;
+  const double h_min = 1.0 / opt.max_substeps;
+  std::vector<double> dp_b(lm.n_cells());
+  while (done < 1) {
+    const double b = std::min(1.0, done + h);
+    for (std::size_t k = 0; k < dp_b.size(); ++k) dp_b[k] = b == 1.0 ? target[k] : start[k] + b * (target[k] - start[k]);
+    std::string why;
+    if (coupling) coupling->begin_substep(b);
+    if (newton(dp_b, rep, why)) {
+      if (coupling) coupling->commit();
+      commit(dp_b);
+      remember_increment_from(u_save);
+      done = b;
+      ++rep.substeps;
+      continue;
+    }
+    restore_u();
+    if (coupling) coupling->revert_substep();
+    if (h / 2 < h_min * (1 - 1e-12) || (!has_hyp && !coupling)) {
+      if (coupling) coupling->revert_step();
+      committed = committed_start;
+      committed_phase = phase_start;
+      committed_c = c_start;
+      dp_cell = start;
+      UGS_PETSC(VecCopy(u_step, u));
+      UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
+      UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
+      rep.converged = false;
+      rep.failure = fmt::format("{}: {} (relative residuals {}){}", label, why, history_text(rep.residuals),
+                                h < 1 ? fmt::format("; sub-step of 1/{:.0f} of the step", 1 / h) : "");
+      rep.seconds = seconds_since(t0);
+      return rep;
+    }
+    h /= 2;
+  }
+  rep.converged = true;
+  rep.seconds = seconds_since(t0);
+  return rep;
+}
+
+}  // namespace ugs::mech

@@ -1,0 +1,102 @@
+// The predictor of the first Newton correction: Galerkin projection on earlier increments
+// (solver_impl.hpp).
+#include "solver_impl.hpp"
+
+namespace ugs::mech {
+
+bool MechanicsSolver::Impl::predict() {
+  const int m = static_cast<int>(basis.size());
+  if (m == 0) return false;
+  std::vector<PetscScalar> c(m);
+  UGS_PETSC(VecMDot(r, m, basis.data(), c.data()));
+  UGS_PETSC(VecSet(du, 0.0));
+  UGS_PETSC(VecMAXPY(du, m, c.data(), basis.data()));
+  return true;
+}
+
+void MechanicsSolver::Impl::refresh_basis() {
+  const int m = static_cast<int>(basis.size());
+  if (m == 0) return;
+  PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
+  for (int j = 0; j < m; ++j) UGS_PETSC(MatMult(A, basis[j], abasis[j]));
+  Eigen::MatrixXd G(m, m);
+  std::vector<PetscScalar> dots(m);
+  for (int j = 0; j < m; ++j) {
+    UGS_PETSC(VecMDot(abasis[j], m, basis.data(), dots.data()));
+    for (int i = 0; i < m; ++i) G(i, j) = dots[i];
+  }
+  G = 0.5 * (G + G.transpose());
+  // W <- W V diag(lambda)^-1/2 over the eigenpairs above a cutoff (drops dependent directions).
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G);
+  const Eigen::VectorXd lam = es.eigenvalues();
+  std::vector<Vec> nb, nab;
+  for (int k = m - 1; k >= 0; --k) {
+    if (!(lam(k) > 1e-10 * lam(m - 1))) break;
+    Vec w, aw_k;
+    UGS_PETSC(VecDuplicate(u, &w));
+    UGS_PETSC(VecDuplicate(u, &aw_k));
+    std::vector<PetscScalar> coef(m);
+    for (int i = 0; i < m; ++i) coef[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
+    UGS_PETSC(VecSet(w, 0.0));
+    UGS_PETSC(VecSet(aw_k, 0.0));
+    UGS_PETSC(VecMAXPY(w, m, coef.data(), basis.data()));
+    UGS_PETSC(VecMAXPY(aw_k, m, coef.data(), abasis.data()));
+    nb.push_back(w);
+    nab.push_back(aw_k);
+  }
+  for (Vec& v : basis) UGS_PETSC(VecDestroy(&v));
+  for (Vec& v : abasis) UGS_PETSC(VecDestroy(&v));
+  basis = std::move(nb);
+  abasis = std::move(nab);
+  PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
+}
+
+void MechanicsSolver::Impl::remember_increment_from(Vec base) {
+  if (!mat_created) return;  // (no matrix yet: the step had no load)
+  Vec v, av;
+  UGS_PETSC(VecDuplicate(u, &v));
+  UGS_PETSC(VecDuplicate(u, &av));
+  UGS_PETSC(VecWAXPY(v, -1.0, base, u));
+  // Prescribed components do not move: keep the basis in the free space.
+  PetscScalar* a = nullptr;
+  UGS_PETSC(VecGetArray(v, &a));
+  for (int i = 0; i < lm.n_owned; ++i)
+    for (int c = 0; c < 3; ++c)
+      if ((lm.fixed[i] >> c) & 1) a[3 * i + c] = 0.0;
+  UGS_PETSC(VecRestoreArray(v, &a));
+  UGS_PETSC(MatMult(A, v, av));
+  PetscScalar n0 = 0;
+  UGS_PETSC(VecDot(v, av, &n0));
+  if (!(n0 > 0)) {
+    UGS_PETSC(VecDestroy(&v));
+    UGS_PETSC(VecDestroy(&av));
+    return;
+  }
+  const int m = static_cast<int>(basis.size());
+  for (int pass = 0; pass < 2 && m > 0; ++pass) {
+    std::vector<PetscScalar> c(m);
+    UGS_PETSC(VecMDot(av, m, basis.data(), c.data()));  // W^T A v
+    for (auto& x : c) x = -x;
+    UGS_PETSC(VecMAXPY(v, m, c.data(), basis.data()));
+    UGS_PETSC(VecMAXPY(av, m, c.data(), abasis.data()));
+  }
+  PetscScalar n1 = 0;
+  UGS_PETSC(VecDot(v, av, &n1));
+  if (!(n1 > 1e-14 * n0)) {
+    UGS_PETSC(VecDestroy(&v));
+    UGS_PETSC(VecDestroy(&av));
+    return;
+  }
+  UGS_PETSC(VecScale(v, 1.0 / std::sqrt(n1)));
+  UGS_PETSC(VecScale(av, 1.0 / std::sqrt(n1)));
+  if (static_cast<int>(basis.size()) == kRecycle) {
+    UGS_PETSC(VecDestroy(&basis.front()));
+    UGS_PETSC(VecDestroy(&abasis.front()));
+    basis.erase(basis.begin());
+    abasis.erase(abasis.begin());
+  }
+  basis.push_back(v);
+  abasis.push_back(av);
+}
+
+}  // namespace ugs::mech

@@ -1,0 +1,336 @@
+// The state and the pieces of the mechanics solver (ugs/mechanics/solver.hpp), shared by its source
+// files: solver.cpp (public interface, gathers), solver_setup.cpp, assembly.cpp, linear_solve.cpp,
+// predictor.cpp, newton.cpp. Private to ugs_mechanics.
+#pragma once
+
+#include "ugs/mechanics/solver.hpp"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <Eigen/Dense>
+#include <fmt/format.h>
+#include <petscksp.h>
+#include "local_mesh.hpp"
+#include "petsc_check.hpp"
+#include "ugs/fem/tet4.hpp"
+#include "ugs/formats/error.hpp"
+#include "ugs/mechanics/collective.hpp"
+#include "ugs/mechanics/coupling.hpp"
+
+namespace ugs::mech {
+
+using fem::Vec6;
+using fem::ZZ;
+
+// PETSc log events of the solver (-log_view).
+struct Events {
+  PetscLogEvent residual = 0, assembly = 0, gather = 0, predictor = 0;
+};
+
+inline const Events& events() {
+  static Events ev = [] {
+    Events e;
+    PetscClassId id = 0;
+    PetscClassIdRegister("ugs-solve", &id);
+    PetscLogEventRegister("UgsResidual", id, &e.residual);
+    PetscLogEventRegister("UgsAssembly", id, &e.assembly);
+    PetscLogEventRegister("UgsGather", id, &e.gather);
+    PetscLogEventRegister("UgsPredictor", id, &e.predictor);
+    return e;
+  }();
+  return ev;
+}
+
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+inline std::string history_text(const std::vector<double>& h) {
+  std::string s;
+  for (std::size_t i = 0; i < h.size(); ++i) s += fmt::format("{}{:.2e}", i ? ", " : "", h[i]);
+  return s;
+}
+
+struct MechanicsSolver::Impl {
+  SolverOptions opt;
+  LocalMesh lm;
+
+  // ---- elements -------------------------------------------------------------------------------
+  std::vector<fem::Tet4> geo;
+  std::vector<double> s0;              // initial effective vertical stress magnitude [MPa]
+  std::vector<double> inv_c0;          // elastic law: 1 / c_M(s0) [Pa]
+  std::vector<std::int32_t> hyp_of_cell;
+  std::vector<std::int32_t> hyp_cells;
+  std::vector<fem::PointState> committed;
+  std::vector<fem::LoadingPhase> committed_phase;
+  std::vector<double> committed_c;     // 1/MPa
+  std::vector<fem::PointUpdate> trial;
+  std::vector<Vec6> trial_eps;
+  std::vector<std::int8_t> guess;
+  std::vector<std::int8_t> last_ddp;   // sign of the element's last pressure change
+  // The knee of the law (hypoplastic.hpp): elements that change branch back and forth are held
+  // on one branch for the rest of the (sub-)step; the convergence test checks the held branches.
+  std::vector<std::int8_t> piece;      // phase at the last Newton iterate (0: none yet)
+  std::vector<std::uint8_t> flips;
+  std::vector<fem::Hold> hold;
+  std::vector<std::int8_t> hold_dir;   // direction the element was held with (inversion stress)
+  std::vector<fem::Mat6> assembled_Dt;
+  std::vector<std::int8_t> assembled_phase, pc_phase;  // branch in the matrix / in the matrix of the last PC setup
+  long long n_hyp_global = 0;
+  bool saturated = false;
+  // Some rank has hypo-plastic elements: the problem is nonlinear and its consistent tangent is not
+  // symmetric, so the Krylov method is GMRES and MUMPS factors LU; CHOLMOD (Cholesky only) factors
+  // the matrix of the symmetric form of the tangent (material_point.hpp; SPD, unlike the symmetric
+  // part of the consistent one at the knee).
+  bool has_hyp = false;
+
+  // ---- loads ----------------------------------------------------------------------------------
+  std::vector<double> dp_cell;         // pressure change of the current state, per local element
+  std::vector<double> fext, fint;      // 3 per owned node
+
+  // ---- linear system --------------------------------------------------------------------------
+  std::vector<PetscInt> node_ptr;      // per owned node: range of its neighbour blocks
+  std::vector<std::int64_t> node_cols; // neighbour global node numbers, sorted per row
+  std::vector<PetscInt> rowptr, cols;  // scalar CSR of the owned rows (global columns)
+  std::vector<double> vals_lin, vals, diag_scale;
+  bool have_lin = false, mat_created = false, mat_changed = false;
+  // Incremental assembly: an element's stiffness is updated when its tangent
+  // moved by more than kTangentChange (relative, largest entry); a full assembly every
+  // kFullAssemblyEvery updates.
+  static constexpr double kTangentChange = 5e-3;
+  static constexpr int kFullAssemblyEvery = 100;
+  static constexpr double kFactorIpd = 5.0;      // iterations per decade a kept factorization gets
+  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off
+  int updates_since_full = 0;
+  Mat A = nullptr, P = nullptr;
+  PetscInt user_maxit_ = -1;
+  Vec u = nullptr, u_save = nullptr, u_step = nullptr, r = nullptr, du = nullptr;
+  KSP ksp = nullptr;
+  bool pc_valid = false;
+  double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
+  double setup_seconds = 0, seconds_per_iteration = 0;  // measured: last PC setup, last solve
+  int pc_setups = 0;
+  // Predictor: the span of the last step increments (orthonormal), Galerkin-projected.
+  static constexpr int kRecycle = 48;
+  std::vector<Vec> basis, abasis;  // W (A-orthonormal) and A W
+  Vec aw = nullptr;
+  // Extra unknowns solved with u (fault contact, coupling.hpp); null for the continuous model.
+  Coupling* coupling = nullptr;
+
+  ~Impl() {
+    if (ksp) KSPDestroy(&ksp);
+    if (A) MatDestroy(&A);
+    if (P) MatDestroy(&P);
+    for (Vec* v : {&u, &u_save, &u_step, &r, &du, &aw})
+      if (*v) VecDestroy(v);
+    for (Vec& v : basis) VecDestroy(&v);
+    for (Vec& v : abasis) VecDestroy(&v);
+  }
+
+  // Every solver runs a Krylov method; with MUMPS or CHOLMOD its preconditioner is a factorization,
+  // which is kept across Newton iterations and steps while it still converges fast (a refactor
+  // costs tens of solves: docs/mechanics.md).
+  bool factored() const { return opt.linear == LinearSolver::Mumps || opt.linear == LinearSolver::Cholmod; }
+  bool owned_dof_fixed(int a, int c) const { return (lm.fixed[a] >> c) & 1; }
+
+  // ---- setup ----------------------------------------------------------------------------------
+  void setup_elements();
+
+  void setup_pattern();
+
+  void setup_vectors();
+
+  // PETSc options that ugs-solve sets unless the user gave them (after "--").
+  static void set_default_options(std::initializer_list<std::pair<const char*, const char*>> defaults);
+
+  // CG for the SPD operator; right-preconditioned GMRES for the consistent hypo-plastic tangent
+  // (both stop on the true residual, so the Newton forcing terms mean the same thing).
+  void set_krylov();
+
+  void setup_ksp();
+
+  // ---- element kernels ------------------------------------------------------------------------
+  void gather_element(const PetscScalar* ua, int c, double* ue) const {
+    const auto& t = lm.cells[c];
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) ue[3 * i + k] = ua[3 * t[i] + k];
+  }
+
+  void add_owned(std::vector<double>& f, int c, const double* fe) const {
+    const auto& t = lm.cells[c];
+    for (int i = 0; i < 4; ++i)
+      if (t[i] < lm.n_owned)
+        for (int k = 0; k < 3; ++k) f[3 * t[i] + k] += fe[3 * i + k];
+  }
+
+  // Effective stress change of a non-hypo-plastic element at strain eps.
+  Vec6 elastic_stress(int c, const Vec6& eps) const {
+    const fem::Material& m = lm.materials[lm.cell_material[c]];
+    if (m.law == fem::Law::Linear) return fem::mat_vec(m.D_linear, eps);
+    Vec6 s = fem::mat_vec(m.Dhat, eps);
+    for (double& v : s) v *= inv_c0[c];
+    return s;
+  }
+
+  fem::Mat6 elastic_D(int c) const {
+    const fem::Material& m = lm.materials[lm.cell_material[c]];
+    if (m.law == fem::Law::Linear) return m.D_linear;
+    fem::Mat6 D;
+    for (int i = 0; i < 36; ++i) D[i] = m.Dhat[i] * inv_c0[c];
+    return D;
+  }
+
+  double start_sigma(int h) const {
+    // Magnitude of the effective vertical stress at the start of the step [MPa].
+    return s0[hyp_cells[h]] - committed[h].dsig[ZZ] * 1e-6;
+  }
+
+  void external_force(const std::vector<double>& dp);
+
+  // r = f_ext - f_int(u) (zero on prescribed dofs); evaluates the hypo-plastic trial states.
+  double residual();
+
+  // ---- assembly -------------------------------------------------------------------------------
+  void scatter(std::vector<double>& v, int c, const std::array<double, 144>& Ke, bool diag_too);
+
+  void set_constrained_diagonal(std::vector<double>& v) const;
+
+  // Builds (or refreshes) the tangent matrix from the current trial states.
+  void assemble();
+
+  const fem::Mat6& tangent(std::size_t h) const { return trial[h].Dt; }
+
+  static double relative_change(const fem::Mat6& a, const fem::Mat6& b);
+
+  // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
+  void scatter_dummy_diag(int c);
+
+  void upload();
+
+  // ---- linear solve ---------------------------------------------------------------------------
+  struct SolveResult {
+    int iterations = 0;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    double reduction = 0;
+  };
+
+  // GAMG's fine-level smoother runs on the preconditioning matrix: when A changes (hypo-plastic
+  // branches) and the hierarchy is reused, it must see the matrix the hierarchy was built from, or
+  // its Chebyshev bounds no longer hold. So GAMG gets a frozen copy P; hypre copies A itself.
+  bool separate_p() const {
+    return (opt.linear == LinearSolver::CgGamg && has_hyp) || (opt.linear == LinearSolver::Cholmod && has_hyp);
+  }
+
+  // P from the symmetric form of every element's tangent (CHOLMOD's matrix).
+  void assemble_symmetric_p();
+
+  void rebuild_pc();
+
+  SolveResult solve_once(double rtol, bool guess, PetscInt maxit);
+
+  // solve_once, timing the preconditioner setup (when fresh) and the iterations apart.
+  SolveResult timed_solve(double rtol, bool guess, PetscInt maxit, bool fresh);
+
+  SolveResult solve(double rtol, bool guess);
+
+  // True when many hypo-plastic elements changed branch since the preconditioner was built: their
+  // stiffness jumped by c_R, and a new setup (a few V-cycles) costs less than the iterations a stale
+  // hierarchy needs.
+  bool branches_moved() const;
+
+  // ---- predictor ------------------------------------------------------------------------------
+  // The increments of earlier steps span most of a new one (the seasonal cycles repeat and the
+  // flow fields are smooth in time): the first Newton correction starts from the Galerkin
+  // projection on them. The basis W is A-orthonormal (W^T A W = I) and A W is kept, so the
+  // projection du0 = W (W^T r) costs dot products only. W is orthonormal for the matrix it was
+  // built with; when the matrix changes it stays a good (no longer optimal) guess until the
+  // preconditioner is rebuilt, when A W is recomputed and W re-orthonormalized.
+  bool predict();
+
+  // Re-orthonormalizes the basis for the current matrix (after a preconditioner rebuild).
+  void refresh_basis();
+
+  // Adds the increment u - base of a converged (sub-)step to the basis, A-orthogonalized against it
+  // (the oldest direction is dropped when full).
+  void remember_increment_from(Vec base);
+
+  // ---- one (sub-)step -------------------------------------------------------------------------
+  bool newton(const std::vector<double>& dp_target, StepReport& rep, std::string& why);
+
+  // An element that changes branch twice within a (sub-)step sits at the knee, where its stiffness
+  // jumps by c_R (at J = 0 on the virgin curve even its lateral stress jumps): Newton would cycle.
+  // It is held on the unloading/reloading branch (the stiffer one: Newton with the softer tangent
+  // overshoots); the residual is then smooth (hypoplastic.hpp).
+  void track_branches();
+
+  // The consistency of the held branches at a converged iterate. A held element whose J ended on
+  // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
+  // after a vertical strain change of delta (the stress moves by delta Dhat e_z / c_t): its
+  // residual is within ||V B^T delta Dhat e_z / c_t|| of the residual of a state that obeys the
+  // law everywhere (at the knee the response is set-valued: either branch's stiffness is
+  // admissible). Returns the sum of these bounds over the inconsistent elements (all ranks).
+  double held_off_branch();
+
+  void commit(const std::vector<double>& dp_target);
+
+  void restore_u();
+
+  StepReport advance(const std::vector<double>& dp_rank0, const std::string& label);
+
+
+  // ---- gathers --------------------------------------------------------------------------------
+  // Concatenates per-rank arrays on rank 0 (counts in doubles).
+  std::vector<double> gatherv(const std::vector<double>& mine) const {
+    int n = static_cast<int>(mine.size());
+    std::vector<int> counts(lm.size), displs(lm.size, 0);
+    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, lm.comm);
+    std::vector<double> all;
+    if (lm.rank == 0) {
+      long long total = 0;
+      for (int p = 0; p < lm.size; ++p) displs[p] = static_cast<int>(total), total += counts[p];
+      all.resize(total);
+    }
+    MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, lm.comm);
+    return all;
+  }
+
+  // Owned-node values (k per node) to mesh order on rank 0.
+  std::vector<double> gather_nodes(const std::vector<double>& owned, int k) const {
+    const auto all = gatherv(owned);
+    std::vector<double> out;
+    if (lm.rank == 0) {
+      out.resize(all.size());
+      for (std::size_t g = 0; g < lm.orig_of_global.size(); ++g)
+        for (int c = 0; c < k; ++c) out[k * lm.orig_of_global[g] + c] = all[k * g + c];
+    }
+    return out;
+  }
+
+  // Owned-cell values (k per cell) to output order on rank 0.
+  std::vector<double> gather_cells_k(const std::vector<double>& owned, int k) const {
+    const auto all = gatherv(owned);
+    std::vector<double> out;
+    if (lm.rank == 0) {
+      out.resize(static_cast<std::size_t>(lm.n_global_cells) * k);
+      std::size_t pos = 0;
+      for (int p = 0; p < lm.size; ++p)
+        for (auto e : lm.owned_cells_of_rank[p]) {
+          for (int c = 0; c < k; ++c) out[static_cast<std::size_t>(e) * k + c] = all[pos + c];
+          pos += k;
+        }
+    }
+    return out;
+  }
+
+  std::vector<double> owned_u() const {
+    std::vector<double> v(3 * lm.n_owned);
+    const PetscScalar* a = nullptr;
+    UGS_PETSC(VecGetArrayRead(u, &a));
+    std::copy(a, a + v.size(), v.begin());
+    UGS_PETSC(VecRestoreArrayRead(u, &a));
+    return v;
+  }
+};
+
+}  // namespace ugs::mech
