@@ -12,6 +12,7 @@
 
 #include "petsc_call.hpp"
 #include "ugs/formats/error.hpp"
+#include "ugs/mechanics/petsc_session.hpp"
 
 #define CHK UGS_CONTACT_PETSC
 
@@ -20,11 +21,7 @@ namespace {
 
 // -ugs_contact_monitor: every node pair that changes state (stick, slip, open) in an iteration.
 bool contact_monitor() {
-  static const bool on = [] {
-    PetscBool has = PETSC_FALSE;
-    PetscOptionsHasName(nullptr, nullptr, "-ugs_contact_monitor", &has);
-    return has == PETSC_TRUE;
-  }();
+  static const bool on = mech::petsc_option_given("-ugs_contact_monitor");
   return on;
 }
 

@@ -1,5 +1,6 @@
 // One load step: Newton with the knee holds, sub-stepping, commit (solver_impl.hpp, docs/mechanics.md).
 #include "solver_impl.hpp"
+#include "ugs/mechanics/petsc_session.hpp"
 
 namespace ugs::mech {
 namespace {
@@ -7,11 +8,7 @@ namespace {
 // -ugs_newton_monitor: every Newton iteration (linear tolerance and iterations, residual, the
 // elements on each branch and held at the knee).
 bool newton_monitor() {
-  static const bool on = [] {
-    PetscBool has = PETSC_FALSE;
-    PetscOptionsHasName(nullptr, nullptr, "-ugs_newton_monitor", &has);
-    return has == PETSC_TRUE;
-  }();
+  static const bool on = petsc_option_given("-ugs_newton_monitor");
   return on;
 }
 
@@ -81,7 +78,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     std::vector<int> before(hyp_cells.size());
     for (std::size_t h = 0; h < hyp_cells.size(); ++h) before[h] = static_cast<int>(trial[h].phase);
     rk = residual();
-    track_branches();
+    track_branches(k);
     long long moved = 0, moved_all = 0;
     for (std::size_t h = 0; h < hyp_cells.size(); ++h) moved += before[h] != static_cast<int>(trial[h].phase);
     MPI_Allreduce(&moved, &moved_all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
@@ -130,10 +127,11 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
   return false;
 }
 
-void MechanicsSolver::Impl::track_branches() {
+void MechanicsSolver::Impl::track_branches(int k) {
+  const int enough = k >= kHoldOnFirstChangeFrom ? 1 : 2;
   for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
     const auto p = static_cast<std::int8_t>(trial[h].phase);
-    if (piece[h] != 0 && p != piece[h] && ++flips[h] >= 2 && hold[h] == fem::Hold::None) {
+    if (piece[h] != 0 && p != piece[h] && ++flips[h] >= enough && hold[h] == fem::Hold::None) {
       hold[h] = fem::Hold::UnloadReload;
       hold_dir[h] = static_cast<std::int8_t>(trial[h].J > 0 ? +1 : trial[h].J < 0 ? -1 : guess[h]);
     }

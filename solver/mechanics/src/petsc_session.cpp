@@ -22,4 +22,10 @@ PetscSession::PetscSession(const std::vector<std::string>& options) {
 
 PetscSession::~PetscSession() { PetscFinalize(); }
 
+bool petsc_option_given(const char* name) {
+  PetscBool has = PETSC_FALSE;
+  UGS_PETSC(PetscOptionsHasName(nullptr, nullptr, name, &has));
+  return has == PETSC_TRUE;
+}
+
 }  // namespace ugs::mech

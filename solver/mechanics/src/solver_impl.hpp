@@ -261,8 +261,13 @@ struct MechanicsSolver::Impl {
   // An element that changes branch twice within a (sub-)step sits at the knee, where its stiffness
   // jumps by c_R (at J = 0 on the virgin curve even its lateral stress jumps): Newton would cycle.
   // It is held on the unloading/reloading branch (the stiffer one: Newton with the softer tangent
-  // overshoots); the residual is then smooth (hypoplastic.hpp).
-  void track_branches();
+  // overshoots); the residual is then smooth (hypoplastic.hpp). From Newton iteration
+  // kHoldOnFirstChangeFrom on, one change is enough: on large meshes a tail of elements near the
+  // pressure front (J ~ 0) changes branch once each, a few per iteration, and keeps the residual
+  // from converging (thesis-scale box, 1950-02: 21 iterations with 2 changes, or no convergence on
+  // another partition). The held branches are checked at convergence (held_off_branch).
+  static constexpr int kHoldOnFirstChangeFrom = 3;
+  void track_branches(int k);
 
   // The consistency of the held branches at a converged iterate. A held element whose J ended on
   // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph

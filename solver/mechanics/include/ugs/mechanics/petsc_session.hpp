@@ -24,4 +24,8 @@ private:
   std::vector<char*> argv_;
 };
 
+// Whether PETSc's options database holds `name` (a flag such as "-ugs_newton_monitor", given after
+// "--"). PETSc must be initialised.
+bool petsc_option_given(const char* name);
+
 }  // namespace ugs::mech
