@@ -170,16 +170,25 @@ private:
   // ---- 1. collapse ------------------------------------------------------------------------------
   std::size_t collapse_pass() {
     std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> cands;  // (length, removed, kept)
-    std::vector<char> want(s_.nodes.size(), 0);
+    std::vector<char> want(s_.nodes.size(), 0), on_fault(s_.nodes.size(), 0);
+    for (std::size_t i = 0; i < s_.tris.size(); ++i)
+      if (!tri_dead_[i] && s_.tri_group[i] >= s_.first_fault_group)
+        for (auto v : s_.tris[i]) on_fault[v] = 1;
     for (std::size_t t = 0; t < s_.tets.size(); ++t) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const auto& e = s_.tets[t];
+      // Short: against the longest edge of the tetrahedron, except between two nodes of a fault,
+      // where it is against the input tetrahedron's shortest edge: the cut points of successive
+      // thin sub-layers are as far apart as the sub-layers and stay, so the fault's interface
+      // elements keep the layering's resolution.
       double len[4][4] = {}, longest = 0;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) longest = std::max(longest, len[i][j] = norm(sub(X(e[i]), X(e[j]))));
+      const double shortest = s_.parent_min_edge[s_.tet_parent[t]];
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
-          if (!(len[i][j] < ratio_ * longest)) continue;
+          const double ref = on_fault[e[i]] && on_fault[e[j]] ? shortest : longest;
+          if (!(len[i][j] < ratio_ * ref)) continue;
           for (auto [b, a] : {std::pair{e[i], e[j]}, std::pair{e[j], e[i]}})
             if (b >= first_new_) {
               cands.emplace_back(len[i][j], b, a);

@@ -22,7 +22,8 @@ struct ElementSoup {
   std::vector<std::array<std::uint32_t, 3>>& tris;
   std::vector<std::uint32_t>& tri_group;
   std::uint32_t first_fault_group;
-  const std::vector<double>& parent_quality;  // smallest dihedral angle of each input tetrahedron (by tet_parent)
+  const std::vector<double>& parent_quality;   // smallest dihedral angle of each input tetrahedron (by tet_parent)
+  const std::vector<double>& parent_min_edge;  // shortest edge of each input tetrahedron
   double bound_deg;                           // see score() in the .cpp and FaultCutOptions::bound_deg
 };
 
@@ -38,7 +39,8 @@ struct BandImprovement {
 // change raises the worst quality among the tetrahedra it touches, with positive volumes (quality:
 // smallest dihedral angle over min(bound_deg, that of the input tetrahedron)).
 //  1. Collapse: a cut node is merged into a neighbour across an edge shorter than `ratio` times
-//     the longest edge of a tetrahedron holding it, when the neighbour lies on all the node's
+//     the longest edge of the tetrahedron (the shortest edge of its input tetrahedron when both
+//     nodes are on a fault, so that the fault keeps the layering's resolution), when the neighbour lies on all the node's
 //     surfaces and lines and the result stays conforming (no face of three tetrahedra, no element
 //     twice, no tetrahedron with its four nodes on one fault). Merged nodes are deleted (the nodes
 //     from `first_new` on are renumbered).

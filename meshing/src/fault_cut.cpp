@@ -221,6 +221,10 @@ public:
           Tb_.push_back(static_cast<std::uint32_t>(b));
           Tp_.push_back(static_cast<std::uint32_t>(Tp_.size()));
           parent_quality_.push_back(min_dihedral_angle_deg(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
+          double shortest = std::numeric_limits<double>::infinity();
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, norm(sub(X_[e[i]], X_[e[j]])));
+          parent_min_edge_.push_back(shortest);
         }
       else if (blk.type == ElementType::Triangle)
         for (std::size_t i = 0; i < blk.size(); ++i) {
@@ -553,7 +557,7 @@ public:
   // Steps 5 and 6: collapse of short edges and smoothing in the band the cut made
   // (cut_band_improvement.hpp).
   BandImprovement improve(std::size_t first_new, double ratio, double smooth_below_deg, double bound_deg) {
-    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), parent_quality_, bound_deg},
+    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), parent_quality_, parent_min_edge_, bound_deg},
                             first_new, ratio, smooth_below_deg, tol_);
   }
 
@@ -726,6 +730,7 @@ private:
   std::vector<std::uint32_t> Tb_;
   std::vector<std::uint32_t> Tp_;         // the input tetrahedron each one comes from
   std::vector<double> parent_quality_;    // smallest dihedral angle of each input tetrahedron
+  std::vector<double> parent_min_edge_;   // shortest edge of each input tetrahedron
   std::vector<std::array<std::uint32_t, 3>> F_;
   std::vector<std::uint32_t> Fb_;
   std::vector<const CutPanel*> done_;  // the panels cut so far

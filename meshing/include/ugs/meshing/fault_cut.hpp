@@ -59,11 +59,12 @@ struct FaultCutOptions {
   // 0 = never.
   double snap = 0.2;
   // After the cut (docs/dipping-faults.md, steps 5-6), a node it made is merged into a neighbour
-  // across an edge shorter than collapse * the longest edge of a tetrahedron holding it (two cuts
-  // that met at a small angle), and the nodes of the cut's tetrahedra with a dihedral angle below
+  // across an edge shorter than collapse * the longest edge of the tetrahedron (between two nodes of
+  // a fault: * the shortest edge of the input tetrahedron, so that the fault keeps the layering's
+  // resolution) — two cuts that met at a small angle — and the nodes of the cut's tetrahedra with a dihedral angle below
   // smooth_below_deg are smoothed; both within the nodes' surfaces and only where the worst
   // tetrahedron touched gets better. 0 = never.
-  double collapse = 0.2;
+  double collapse = 0.35;
   double smooth_below_deg = 10;
   // The quality bound (docs/dipping-faults.md, "Mesh quality"): a tetrahedron holding a node the
   // cut made should keep a smallest dihedral angle of at least min(bound_deg, that of the input
