@@ -187,13 +187,7 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
   s.iterations = its_total;
   if (fresh) ++pc_setups;
   pc_valid = true;
-  // Prescribed components stay exactly at their values (an AMG correction may touch them).
-  PetscScalar* d = nullptr;
-  UGS_PETSC(VecGetArray(du, &d));
-  for (int a = 0; a < lm.n_owned; ++a)
-    for (int c = 0; c < 3; ++c)
-      if ((lm.fixed[a] >> c) & 1) d[3 * a + c] = 0.0;
-  UGS_PETSC(VecRestoreArray(du, &d));
+  zero_fixed(du);  // prescribed components stay exactly at their values (an AMG correction may touch them)
   return s;
 }
 

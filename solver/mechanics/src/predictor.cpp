@@ -57,13 +57,7 @@ void MechanicsSolver::Impl::remember_increment_from(Vec base) {
   UGS_PETSC(VecDuplicate(u, &v));
   UGS_PETSC(VecDuplicate(u, &av));
   UGS_PETSC(VecWAXPY(v, -1.0, base, u));
-  // Prescribed components do not move: keep the basis in the free space.
-  PetscScalar* a = nullptr;
-  UGS_PETSC(VecGetArray(v, &a));
-  for (int i = 0; i < lm.n_owned; ++i)
-    for (int c = 0; c < 3; ++c)
-      if ((lm.fixed[i] >> c) & 1) a[3 * i + c] = 0.0;
-  UGS_PETSC(VecRestoreArray(v, &a));
+  zero_fixed(v);  // prescribed components do not move: keep the basis in the free space
   UGS_PETSC(MatMult(A, v, av));
   PetscScalar n0 = 0;
   UGS_PETSC(VecDot(v, av, &n0));

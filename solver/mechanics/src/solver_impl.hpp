@@ -133,6 +133,15 @@ struct MechanicsSolver::Impl {
   // costs tens of solves: docs/mechanics.md).
   bool factored() const { return opt.linear == LinearSolver::Mumps || opt.linear == LinearSolver::Cholmod; }
   bool owned_dof_fixed(int a, int c) const { return (lm.fixed[a] >> c) & 1; }
+  // Sets the prescribed components of a vector of owned displacements to zero.
+  void zero_fixed(Vec v) const {
+    PetscScalar* x = nullptr;
+    UGS_PETSC(VecGetArray(v, &x));
+    for (int a = 0; a < lm.n_owned; ++a)
+      for (int c = 0; c < 3; ++c)
+        if (owned_dof_fixed(a, c)) x[3 * a + c] = 0.0;
+    UGS_PETSC(VecRestoreArray(v, &x));
+  }
 
   // ---- setup ----------------------------------------------------------------------------------
   void setup_elements();
