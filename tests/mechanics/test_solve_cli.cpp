@@ -56,6 +56,13 @@ std::string column_args(const Dir& d, const std::string& case_file = "case.toml"
   return d / "mesh.msh" + " --case " + d / case_file + " --pressure " + d / "flow.h5";
 }
 
+// Writes mech_make_case's two-pool "small" case into d; returns ugs-solve's mesh and pressure
+// arguments (empty when the case could not be made).
+std::string small_case_args(const Dir& d) {
+  if (test::run(test::make_case() + " small " + d.path.string()).exit_code != 0) return {};
+  return d / "mesh.msh" + " --pressure " + d / "flow_pool_a.h5" + " --pressure " + d / "flow_pool_c.h5";
+}
+
 // Writes a variant of the V1 case file with `from` replaced by `to`.
 void variant(const Dir& d, const std::string& from, const std::string& to, const std::string& out) {
   std::string text = test::slurp(d / "case.toml");
@@ -141,8 +148,8 @@ TEST(SolveTool, PetscOptionsPassThrough) {
 
 TEST(SolveTool, SameResultOnOneAndTwoProcesses) {
   Dir d("solve-mpi");
-  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string()).exit_code, 0);
-  const std::string args = d / "mesh.msh" + " --pressure " + d / "flow_pool_a.h5" + " --pressure " + d / "flow_pool_c.h5";
+  const std::string args = small_case_args(d);
+  ASSERT_FALSE(args.empty());
   // Both MUMPS-preconditioned GMRES and CG + GAMG, driven to 1e-12 (each is a Krylov solve to the
   // Newton forcing term, so the processor count shows at the tolerance).
   std::string text = test::slurp(d / "case.toml");
@@ -167,9 +174,9 @@ TEST(SolveTool, SameResultOnOneAndTwoProcesses) {
 // to run, and the displacements with it, by ~1e-9 m on a 52,000-node box).
 TEST(SolveTool, TwoProcessRunsAreIdentical) {
   Dir d("solve-determinism");
-  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string()).exit_code, 0);
-  const std::string args = d / "mesh.msh" + " --case " + d / "case.toml" + " --pressure " + d / "flow_pool_a.h5" +
-                           " --pressure " + d / "flow_pool_c.h5";
+  const std::string small = small_case_args(d);
+  ASSERT_FALSE(small.empty());
+  const std::string args = small + " --case " + d / "case.toml";
   for (const std::string tag : {"a", "b"}) {
     auto r = test::run(test::solve_cmd(2) + " " + args + " -o " + d / (tag + ".h5"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -183,9 +190,9 @@ TEST(SolveTool, TwoProcessRunsAreIdentical) {
 
 TEST(SolveTool, RestartReproducesAnUninterruptedRun) {
   Dir d("solve-restart");
-  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string()).exit_code, 0);
-  const std::string args = d / "mesh.msh" + " --case " + d / "case.toml" + " --pressure " + d / "flow_pool_a.h5" +
-                           " --pressure " + d / "flow_pool_c.h5";
+  const std::string small = small_case_args(d);
+  ASSERT_FALSE(small.empty());
+  const std::string args = small + " --case " + d / "case.toml";
   for (const std::string solver : {"mumps", "cg-gamg"}) {
     const std::string s = " --solver " + solver;
     auto r = test::run(test::solve_cmd() + " " + args + s + " -o " + d / "full.h5");
