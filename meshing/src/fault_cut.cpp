@@ -15,20 +15,14 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
 #include "cut_band_improvement.hpp"
+#include "vec3.hpp"
 
 namespace ugs {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using namespace vec3;
 
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point3 scaled(const Point3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
-Point3 unit(const Point3& a) { return scaled(a, 1.0 / norm(a)); }
+constexpr double kPi = 3.14159265358979323846;
 
 double cot_deg(double dip_deg) {
   if (dip_deg >= 90) return 0.0;

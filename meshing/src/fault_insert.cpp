@@ -16,18 +16,14 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "vec3.hpp"
 
 namespace ugs {
 namespace {
 
-constexpr std::uint32_t kNone = 0xffffffffu;
+using namespace vec3;
 
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
+constexpr std::uint32_t kNone = 0xffffffffu;
 
 bool has_fault_prefix(const std::string& n) { return n.rfind("fault:", 0) == 0; }
 std::string strip_fault(const std::string& n) { return has_fault_prefix(n) ? n.substr(6) : n; }

@@ -7,9 +7,12 @@
 
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/fault_traces.hpp"
+#include "vec3.hpp"
 
 namespace ugs {
 namespace {
+
+using namespace vec3;
 
 using P2 = std::array<double, 2>;
 constexpr double kPi = 3.14159265358979323846;
@@ -62,11 +65,6 @@ P2 meeting_point(const P2& a, const P2& b, const P2& c, const P2& d) {
   consider(a, b, d);
   return best;
 }
-
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 }  // namespace
 
