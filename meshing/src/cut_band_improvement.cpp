@@ -12,21 +12,15 @@
 #include <Eigen/Dense>
 
 #include "ugs/meshing/mesh_quality.hpp"
+#include "vec3.hpp"
 
 namespace ugs {
 namespace {
 
+using namespace vec3;
+
 using Face = std::array<std::uint32_t, 3>;
 using Tet = std::array<std::uint32_t, 4>;
-
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Point3 add(const Point3& a, const Point3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Point3 scaled(const Point3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
 
 Face sorted(Face f) {
   std::sort(f.begin(), f.end());
@@ -91,6 +85,7 @@ public:
 private:
   const Point3& X(std::uint32_t v) const { return s_.nodes[v]; }
   double quality(const Tet& t) const { return min_dihedral_angle_deg(X(t[0]), X(t[1]), X(t[2]), X(t[3])); }
+  bool positive(const Tet& t) const { return tet_signed_volume(X(t[0]), X(t[1]), X(t[2]), X(t[3])) > 0; }
   // The measure every change must raise (its minimum over the tetrahedra it touches): the smallest
   // dihedral angle relative to min(bound, that of the input tetrahedron it comes from), so that a
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
@@ -170,10 +165,13 @@ private:
   // ---- 1. collapse ------------------------------------------------------------------------------
   std::size_t collapse_pass() {
     std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> cands;  // (length, removed, kept)
-    std::vector<char> want(s_.nodes.size(), 0), on_fault(s_.nodes.size(), 0);
+    std::vector<char> want(s_.nodes.size(), 0);
+    node_faults_.assign(s_.nodes.size(), {});
     for (std::size_t i = 0; i < s_.tris.size(); ++i)
       if (!tri_dead_[i] && s_.tri_group[i] >= s_.first_fault_group)
-        for (auto v : s_.tris[i]) on_fault[v] = 1;
+        for (auto v : s_.tris[i])
+          if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
+    for (auto& g : node_faults_) std::sort(g.begin(), g.end());
     for (std::size_t t = 0; t < s_.tets.size(); ++t) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const auto& e = s_.tets[t];
@@ -187,7 +185,7 @@ private:
       const double shortest = s_.parent_min_edge[s_.tet_parent[t]];
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
-          const double ref = on_fault[e[i]] && on_fault[e[j]] ? shortest : longest;
+          const double ref = !node_faults_[e[i]].empty() && !node_faults_[e[j]].empty() ? shortest : longest;
           if (!(len[i][j] < ratio_ * ref)) continue;
           for (auto [b, a] : {std::pair{e[i], e[j]}, std::pair{e[j], e[i]}})
             if (b >= first_new_) {
@@ -200,12 +198,6 @@ private:
     std::sort(cands.begin(), cands.end());
     cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
     build_adjacency(want);
-    node_faults_.assign(s_.nodes.size(), {});
-    for (std::size_t i = 0; i < s_.tris.size(); ++i)
-      if (!tri_dead_[i] && s_.tri_group[i] >= s_.first_fault_group)
-        for (auto v : s_.tris[i])
-          if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
-    for (auto& g : node_faults_) std::sort(g.begin(), g.end());
     std::vector<char> touched(s_.nodes.size(), 0);
     std::size_t merged = 0;
     for (const auto& [len, b, a] : cands) {
@@ -268,11 +260,14 @@ private:
     // The kept node must lie on b's surfaces and lines (a node on a fault's outline stays on that
     // line: the fault keeps its extent), moved there if needed (within half the edge, staying on
     // its own).
-    Surfaces sb, sa;
-    if (!surfaces_of(b, sb) || !surfaces_of(a, sa)) return false;
+    Surfaces sb;
+    if (!surfaces_of(b, sb)) return false;
     const Point3 xa = X(a);
     Point3 x = xa;
-    if (!lies_on(sb, b, a) && !merged_position(sa, a, sb, b, 0.5 * norm(sub(X(b), xa)), x)) return false;
+    if (!lies_on(sb, b, a)) {
+      Surfaces sa;
+      if (!surfaces_of(a, sa) || !merged_position(sa, a, sb, b, 0.5 * norm(sub(X(b), xa)), x)) return false;
+    }
     const bool moves = x[0] != xa[0] || x[1] != xa[1] || x[2] != xa[2];
     double before = std::numeric_limits<double>::infinity();
     if (moves)
@@ -292,13 +287,13 @@ private:
     };
     double after = std::numeric_limits<double>::infinity();
     for (const auto& [t, e] : changed) {
-      if (!(tet_signed_volume(X(e[0]), X(e[1]), X(e[2]), X(e[3])) > 0)) return undo();
+      if (!positive(e)) return undo();
       after = std::min(after, score(t, e));
     }
     for (auto t : tets_of_[a]) {  // a's own tetrahedra, when it moved
       if (!moves || has(s_.tets[t], b)) continue;
       const auto& e = s_.tets[t];
-      if (!(tet_signed_volume(X(e[0]), X(e[1]), X(e[2]), X(e[3])) > 0)) return undo();
+      if (!positive(e)) return undo();
       after = std::min(after, score(t, e));
     }
     if (!(after > before)) return undo();
@@ -361,7 +356,7 @@ private:
   // ---- 2. smoothing ---------------------------------------------------------------------------
   std::size_t smoothing_pass() {
     std::vector<char> want(s_.nodes.size(), 0);
-    std::vector<std::pair<double, std::uint32_t>> order;  // (worst angle, node)
+    std::vector<std::pair<double, std::uint32_t>> order;  // (worst score, node)
     std::vector<double> worst(s_.nodes.size(), 180);
     for (std::size_t t = 0; t < s_.tets.size(); ++t) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
@@ -425,7 +420,7 @@ private:
       double after = std::numeric_limits<double>::infinity();
       for (auto t : tets_of_[v]) {
         const auto& e = s_.tets[t];
-        if (!(tet_signed_volume(X(e[0]), X(e[1]), X(e[2]), X(e[3])) > 0)) {
+        if (!positive(e)) {
           ok = false;
           break;
         }
@@ -433,9 +428,7 @@ private:
       }
       // Exact surfaces keep the node to rounding, faults within the tolerance.
       for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
-      if (ok && after > before) {
-        return true;
-      }
+      if (ok && after > before) return true;
     }
     s_.nodes[v] = x0;
     return false;
