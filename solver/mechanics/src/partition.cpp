@@ -33,7 +33,7 @@ void rcb(const std::vector<Point3>& x, std::vector<std::uint32_t>& idx, std::siz
   rcb(x, idx, mid, hi, part0 + left, nparts - left, part);
 }
 
-std::vector<int> ptscotch(const Model& model, std::size_t n, int nparts) {
+std::vector<int> scotch_parts(const Model& model, std::size_t n, int nparts) {
   // Node graph of the tetrahedra (no self loops), rows sorted.
   std::vector<std::uint32_t> inc_ptr(n + 1, 0), inc;
   for (const auto& t : model.tets)
@@ -64,8 +64,6 @@ std::vector<int> ptscotch(const Model& model, std::size_t n, int nparts) {
   // same way every run. (Through PETSc's PT-Scotch interface the split changed from run to run:
   // 248,900 / 248,898 / 248,879 nodes on rank 0 of the thesis-scale box, and with it the rounding
   // of every sum and the Newton path.)
-  std::vector<SCOTCH_Num>& verttab = ia_v;
-  std::vector<SCOTCH_Num>& edgetab = adj;
   std::vector<SCOTCH_Num> parttab(n, 0);
   SCOTCH_Context context;
   SCOTCH_Graph graph, bound;
@@ -77,8 +75,8 @@ std::vector<int> ptscotch(const Model& model, std::size_t n, int nparts) {
             SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMDETERMINISTIC, 1) == 0;
   if (ok) SCOTCH_contextRandomSeed(&context, 1);
   ok = ok &&
-       SCOTCH_graphBuild(&graph, 0, static_cast<SCOTCH_Num>(n), verttab.data(), nullptr, nullptr, nullptr,
-                         static_cast<SCOTCH_Num>(edgetab.size()), edgetab.data(), nullptr) == 0 &&
+       SCOTCH_graphBuild(&graph, 0, static_cast<SCOTCH_Num>(n), ia_v.data(), nullptr, nullptr, nullptr,
+                         static_cast<SCOTCH_Num>(adj.size()), adj.data(), nullptr) == 0 &&
        SCOTCH_contextBindGraph(&context, &graph, &bound) == 0;
   ok = ok && SCOTCH_stratGraphMapBuild(&strat, SCOTCH_STRATQUALITY | SCOTCH_STRATBALANCE, nparts, 0.01) == 0 &&
        SCOTCH_graphPart(&bound, nparts, &strat, parttab.data()) == 0;
@@ -103,7 +101,7 @@ std::vector<int> partition_nodes(const Model& model, const std::vector<Point3>& 
   const std::size_t n = coords.size();
   if (nparts <= 1) return std::vector<int>(n, 0);
   if (method == PartitionMethod::PtScotch) {
-    std::vector<int> part = ptscotch(model, n, nparts);
+    std::vector<int> part = scotch_parts(model, n, nparts);
     // Every part must own something (a rank without rows would break the matrix layout).
     std::vector<std::size_t> count(nparts, 0);
     for (int p : part) ++count[p];
