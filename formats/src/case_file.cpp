@@ -169,7 +169,7 @@ CaseFile read_case_file(const std::string& path) {
   for (const auto& t : root.tables("fault")) c.faults.push_back(parse_fault(t));
   if (auto s = root.table_opt("solver")) {
     s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
-                       "reuse_preconditioner", "fault_solver"});
+                       "reuse_preconditioner", "fault_solver", "steps", "turning_point_tolerance_MPa"});
     c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8));
     c.max_newton_iterations = static_cast<int>(s->integer_opt("max_newton_iterations").value_or(25));
     c.linear_solver = s->string_opt("linear_solver").value_or("cg-hypre");
@@ -182,6 +182,11 @@ CaseFile read_case_file(const std::string& path) {
     c.max_substeps = static_cast<int>(s->integer_opt("max_substeps").value_or(64));
     if (c.max_substeps < 1 || c.max_substeps > 4096) throw s->error("max_substeps", "must lie in [1, 4096]");
     c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true);
+    c.steps = s->string_opt("steps").value_or("every-date");
+    if (c.steps != "every-date" && c.steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");
+    if (c.steps == "turning-points" && c.inversion_rule != "sigma-max")
+      throw s->error("steps", "turning-points needs inversion_rule = \"sigma-max\" (the other rules depend on the whole path)");
+    c.turning_point_tolerance = 1e6 * positive(*s, "turning_point_tolerance_MPa", s->number_or("turning_point_tolerance_MPa", 1e-3));
     c.fault_solver = s->string_opt("fault_solver").value_or("auto");
     if (!std::set<std::string>{"auto", "mumps", "fieldsplit"}.count(c.fault_solver))
       throw s->error("fault_solver", "must be one of auto, mumps, fieldsplit");

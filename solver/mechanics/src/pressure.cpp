@@ -130,6 +130,9 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
     files_.push_back(std::move(f));
   }
   for (const auto& [t, d] : dates) steps_.push_back({d, t});
+  file_cells_.resize(files_.size());
+  for (std::uint32_t e = 0; e < cell_file_.size(); ++e)
+    if (cell_file_[e] >= 0) file_cells_[cell_file_[e]].push_back(e);
 }
 
 PressureHistory::~PressureHistory() = default;
@@ -171,11 +174,10 @@ std::vector<double> PressureHistory::cell_dp(double time) {
   std::vector<double> dp(cell_file_.size(), 0.0);
   for (std::size_t fi = 0; fi < files_.size(); ++fi) {
     const auto v = file_values(*files_[fi], time);
-    for (std::size_t e = 0; e < dp.size(); ++e)
-      if (cell_file_[e] == static_cast<std::int32_t>(fi)) {
-        const auto& n = cell_nodes_[e];
-        dp[e] = 0.25 * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]);
-      }
+    for (const std::uint32_t e : file_cells_[fi]) {
+      const auto& n = cell_nodes_[e];
+      dp[e] = 0.25 * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]);
+    }
   }
   return dp;
 }

@@ -17,6 +17,7 @@
 #include "ugs/mechanics/model.hpp"
 #include "ugs/mechanics/pressure.hpp"
 #include "ugs/mechanics/solver.hpp"
+#include "ugs/mechanics/step_dates.hpp"
 #include "ugs/mechanics/step_output.hpp"
 
 namespace ugs::mech {
@@ -114,6 +115,8 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
     R.cs = read_case_file(o.case_file);
     R.mesh = read_msh(o.mesh);
     if (o.faulted && R.mesh.count(ElementType::Prism) > 0) {
+      if (R.cs.steps != "every-date")
+        throw InputError(R.cs.path, "[solver] steps = \"turning-points\" is for the continuous model: fault slip depends on the whole path");
       faulted = 1;  // interface elements: the fault mechanics take the run
       return;
     }
@@ -153,9 +156,26 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
     const std::set<std::string> outs(root->cs.output_dates.begin(), root->cs.output_dates.end());
     std::set<double> out_times;
     for (const auto& d : outs) out_times.insert(static_cast<double>(*parse_iso_date(d)));
+    const auto& steps = root->history->steps();
+    // The steps the run takes: every date, or the turning points, outputs and the last date.
+    std::vector<char> take(steps.size(), 1);
+    if (root->cs.steps == "turning-points") {
+      take = turning_points(*root->history, root->cs.turning_point_tolerance);
+      std::size_t last = steps.size();
+      for (std::size_t k = 0; k < steps.size(); ++k) {
+        if (steps[k].time <= until) last = k;
+        if (out_times.count(steps[k].time)) take[k] = 1;
+      }
+      if (last < steps.size()) take[last] = 1;
+      std::size_t n = 0, all = 0;
+      for (std::size_t k = 0; k < steps.size(); ++k)
+        if (steps[k].time > root->restart_time && steps[k].time <= until) n += take[k], ++all;
+      log(1, fmt::format("turning-point steps: {} of {} dates (turning points of the pressure, output dates, the last date)", n, all));
+    }
     int since_checkpoint = 0;
-    for (const auto& s : root->history->steps()) {
-      if (s.time <= root->restart_time || s.time > until) continue;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      const auto& s = steps[k];
+      if (s.time <= root->restart_time || s.time > until || !take[k]) continue;
       dates.push_back(s.date);
       times.push_back(s.time);
       const bool out = outs.empty() || out_times.count(s.time);

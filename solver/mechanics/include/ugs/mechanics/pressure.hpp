@@ -50,6 +50,7 @@ private:
   std::vector<std::unique_ptr<File>> files_;
   std::vector<PressureStep> steps_;
   std::vector<std::int32_t> cell_file_;                 // file of each tetrahedron, -1 none
+  std::vector<std::vector<std::uint32_t>> file_cells_;  // the tetrahedra of each file
   std::vector<std::array<std::int32_t, 4>> cell_nodes_; // the tetrahedron's nodes in its file
   std::size_t num_nodes_ = 0;
 };

@@ -1,0 +1,41 @@
+#include "ugs/mechanics/step_dates.hpp"
+
+#include <stdexcept>
+
+namespace ugs::mech {
+
+void TurningPoints::add(const std::vector<double>& dp) {
+  const auto k = static_cast<std::int32_t>(turns_.size());
+  turns_.push_back(0);
+  if (k == 0) {
+    secured_.assign(dp.size(), 0.0);
+    low_.assign(dp.size(), 0.0);
+    low_date_.assign(dp.size(), -1);
+  } else if (dp.size() != secured_.size()) {
+    throw std::logic_error("TurningPoints::add: a date with another number of elements");
+  }
+  for (std::size_t e = 0; e < dp.size(); ++e) {
+    const double p = dp[e];
+    if (low_date_[e] < 0) {
+      if (p < secured_[e] - tolerance_) {
+        low_[e] = p;
+        low_date_[e] = k;
+      }
+    } else if (p < low_[e]) {
+      low_[e] = p;
+      low_date_[e] = k;
+    } else if (p > low_[e] + tolerance_) {
+      turns_[low_date_[e]] = 1;
+      secured_[e] = low_[e];
+      low_date_[e] = -1;
+    }
+  }
+}
+
+std::vector<char> turning_points(PressureHistory& history, double tolerance) {
+  TurningPoints tp(tolerance);
+  for (const auto& s : history.steps()) tp.add(history.cell_dp(s.time));
+  return tp.turns();
+}
+
+}  // namespace ugs::mech
