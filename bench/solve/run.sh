@@ -4,7 +4,7 @@
 #   bench/solve/run.sh [BUILD_DIR] [WORK_DIR]
 #     EVERY_DATE=1    step the history on every month instead of its turning points
 #     SCALE=0.25      plan node count scale of the thesis-scale box (default 1: ~500,000 nodes)
-#     SKIP_PEER=1     skip FEniCSx;  SKIP_HISTORY=1 skip the history;  HISTORY_STEPS=N steps to time
+#     SKIP_PEER=1     skip FEniCSx;  SKIP_LINEAR=1 skip the linear solve;  SKIP_HISTORY=1 skip the history;  HISTORY_STEPS=N steps to time
 #     HISTORY_SAMPLE=1  time 7 monthly steps (production and storage) and project the whole history
 #
 # 1. linear: one linear elastic solve of the thesis-scale model (~500,000 nodes, 1.5 million
@@ -40,33 +40,35 @@ secs() { echo "$2 - $1" | bc; }
 
 # ---- 1. linear --------------------------------------------------------------------------------
 lin=$work/linear
-mkdir -p "$lin"
-if [[ ! -f $lin/mesh.msh || "$(cat "$lin/.scale" 2>/dev/null)" != "$scale" ]]; then
-  "$make_case" thesis "$lin" --linear --scale "$scale" 2>&1
-  echo "$scale" > "$lin/.scale"
-fi
-echo "== linear: ugs-solve, 2 processes"
-t0=$(now)
-/usr/bin/time -f "ugs-solve: max RSS %M kB (largest process)" $mpirun "$solve" "$lin/mesh.msh" --case "$lin/case.toml" \
-  --pressure "$lin/flow.h5" -o "$lin/ugs.h5" -v 2>&1 | grep -E "linear iterations,|time:|KSP|RSS" | sed 's/^ugs-solve: /ugs-solve: /'
-t_ugs=$(secs "$t0" "$(now)")
-echo "ugs-solve: wall $t_ugs s"
-/usr/bin/python3 -c "
+if [[ ${SKIP_LINEAR:-0} != 1 ]]; then
+  mkdir -p "$lin"
+  if [[ ! -f $lin/mesh.msh || "$(cat "$lin/.scale" 2>/dev/null)" != "$scale" ]]; then
+    "$make_case" thesis "$lin" --linear --scale "$scale" 2>&1
+    echo "$scale" > "$lin/.scale"
+  fi
+  echo "== linear: ugs-solve, 2 processes"
+  t0=$(now)
+  /usr/bin/time -f "ugs-solve: max RSS %M kB (largest process)" $mpirun "$solve" "$lin/mesh.msh" --case "$lin/case.toml" \
+    --pressure "$lin/flow.h5" -o "$lin/ugs.h5" -v 2>&1 | grep -E "linear iterations,|time:|KSP|RSS" | sed 's/^ugs-solve: /ugs-solve: /'
+  t_ugs=$(secs "$t0" "$(now)")
+  echo "ugs-solve: wall $t_ugs s"
+  /usr/bin/python3 -c "
 import h5py; h = h5py.File('$lin/ugs.h5'); s = sorted(h['steps'])[-1]; u = h['steps'][s]['node']['u'][:]
 print(f'ugs-solve: min u_z {u[:, 2].min() * 1e3:.4f} mm')"
-if [[ ${SKIP_PEER:-0} != 1 ]]; then
-  dpkg -l python3-dolfinx-real >/dev/null 2>&1 || { echo "FEniCSx (python3-dolfinx-real) is not installed"; exit 1; }
-  # FFCx compiles the forms on first use: warm its cache on a tiny model so the peer is not charged.
-  mkdir -p "$work/warm"
-  [[ -f $work/warm/mesh_arrays.h5 ]] || "$make_case" thesis "$work/warm" --linear --scale 0.01 >/dev/null 2>&1
-  /usr/bin/python3 "$here/fenicsx_linear.py" "$work/warm" >/dev/null 2>&1 || true
-  echo "== linear: FEniCSx 0.5, 2 processes"
-  t0=$(now)
-  /usr/bin/time -f "fenicsx: max RSS %M kB (largest process)" $mpirun /usr/bin/python3 "$here/fenicsx_linear.py" "$lin" \
-    "$lin/fenicsx_u.xdmf" 2>&1 | grep -E "^fenicsx"
-  t_fx=$(secs "$t0" "$(now)")
-  echo "fenicsx: wall $t_fx s"
-  echo "linear: FEniCSx / ugs-solve = $(echo "scale=2; $t_fx / $t_ugs" | bc) (target >= 2)"
+  if [[ ${SKIP_PEER:-0} != 1 ]]; then
+    dpkg -l python3-dolfinx-real >/dev/null 2>&1 || { echo "FEniCSx (python3-dolfinx-real) is not installed"; exit 1; }
+    # FFCx compiles the forms on first use: warm its cache on a tiny model so the peer is not charged.
+    mkdir -p "$work/warm"
+    [[ -f $work/warm/mesh_arrays.h5 ]] || "$make_case" thesis "$work/warm" --linear --scale 0.01 >/dev/null 2>&1
+    /usr/bin/python3 "$here/fenicsx_linear.py" "$work/warm" >/dev/null 2>&1 || true
+    echo "== linear: FEniCSx 0.5, 2 processes"
+    t0=$(now)
+    /usr/bin/time -f "fenicsx: max RSS %M kB (largest process)" $mpirun /usr/bin/python3 "$here/fenicsx_linear.py" "$lin" \
+      "$lin/fenicsx_u.xdmf" 2>&1 | grep -E "^fenicsx"
+    t_fx=$(secs "$t0" "$(now)")
+    echo "fenicsx: wall $t_fx s"
+    echo "linear: FEniCSx / ugs-solve = $(echo "scale=2; $t_fx / $t_ugs" | bc) (target >= 2)"
+  fi
 fi
 
 # ---- 2. history -------------------------------------------------------------------------------

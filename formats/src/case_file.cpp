@@ -186,7 +186,7 @@ CaseFile read_case_file(const std::string& path) {
     if (c.steps != "every-date" && c.steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");
     if (c.steps == "turning-points" && c.inversion_rule != "sigma-max")
       throw s->error("steps", "turning-points needs inversion_rule = \"sigma-max\" (the other rules depend on the whole path)");
-    c.turning_point_tolerance = 1e6 * positive(*s, "turning_point_tolerance_MPa", s->number_or("turning_point_tolerance_MPa", 1e-3));
+    c.turning_point_tolerance = 1e6 * positive(*s, "turning_point_tolerance_MPa", s->number_or("turning_point_tolerance_MPa", 1e-2));
     c.fault_solver = s->string_opt("fault_solver").value_or("auto");
     if (!std::set<std::string>{"auto", "mumps", "fieldsplit"}.count(c.fault_solver))
       throw s->error("fault_solver", "must be one of auto, mumps, fieldsplit");

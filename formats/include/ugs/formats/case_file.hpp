@@ -80,7 +80,7 @@ struct CaseFile {
   std::string inversion_rule = "sigma-max";     // sigma-max | sigma-inversion | stress-dependent
   int max_substeps = 64;                        // a step that fails may be split into up to this many
   std::string steps = "every-date";             // every-date | turning-points (docs/mechanics.md)
-  double turning_point_tolerance = 1e3;         // Pa: a new low of the pressure change smaller than this is none
+  double turning_point_tolerance = 1e4;         // Pa: a new low of the pressure change smaller than this is none
   bool reuse_preconditioner = true;             // keep the AMG hierarchy while it converges well
   // Output dates (ISO 8601); empty means every schedule date.
   std::vector<std::string> output_dates;
