@@ -138,17 +138,23 @@ void MechanicsSolver::Impl::assemble() {
     }
     set_constrained_diagonal(vals);  // (scatter never touches prescribed rows or columns)
     updates_since_full = 0;
+    upload(true, {});
   } else {
+    std::vector<std::int32_t> rows;  // owned nodes whose rows changed
     for (const auto h : stale) {
       fem::Mat6 dD;
       for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembled_Dt[h][i];
       scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], dD), false);
       assembled_Dt[h] = tangent(h);
       assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
+      for (const auto v : lm.cells[hyp_cells[h]])
+        if (v < lm.n_owned) rows.push_back(v);
     }
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
     ++updates_since_full;
+    upload(false, rows);
   }
-  upload();
   if (!has_hyp) {
     // The matrix can never change: the assembly arrays are not needed again.
     std::vector<double>().swap(vals);
@@ -176,7 +182,7 @@ void MechanicsSolver::Impl::scatter_dummy_diag(int c) {
       for (int ci = 0; ci < 3; ++ci) diag_scale[3 * t[i] + ci] += Ke[(3 * i + ci) * 12 + 3 * i + ci];
 }
 
-void MechanicsSolver::Impl::upload() {
+void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes) {
   const PetscInt m = 3 * lm.n_owned;
   if (!mat_created) {
     UGS_PETSC(MatCreate(lm.comm, &A));
@@ -212,10 +218,16 @@ void MechanicsSolver::Impl::upload() {
     UGS_PETSC(KSPSetOperators(ksp, A, A));
     mat_created = true;
   } else {
-    for (PetscInt i = 0; i < m; ++i) {
+    auto set_row = [&](PetscInt i) {
       const PetscInt row = static_cast<PetscInt>(3 * lm.node_begin) + i;
       UGS_PETSC(MatSetValues(A, 1, &row, rowptr[i + 1] - rowptr[i], cols.data() + rowptr[i], vals.data() + rowptr[i],
                              INSERT_VALUES));
+    };
+    if (all_rows) {
+      for (PetscInt i = 0; i < m; ++i) set_row(i);
+    } else {
+      for (const auto v : changed_nodes)
+        for (PetscInt c = 0; c < 3; ++c) set_row(3 * v + c);
     }
     UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));

@@ -18,7 +18,7 @@ bool MechanicsSolver::Impl::branches_moved() const {
   long long mine = 0, all = 0;
   for (std::size_t h = 0; h < assembled_phase.size(); ++h) mine += assembled_phase[h] != pc_phase[h];
   MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
-  return static_cast<double>(all) > 0.005 * static_cast<double>(n_hyp_global);
+  return static_cast<double>(all) > 0.05 * static_cast<double>(n_hyp_global);
 }
 
 bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepReport& rep, std::string& why) {

@@ -112,7 +112,7 @@ struct MechanicsSolver::Impl {
   double setup_seconds = 0, seconds_per_iteration = 0;  // measured: last PC setup, last solve
   int pc_setups = 0;
   // Predictor: the span of the last step increments (orthonormal), Galerkin-projected.
-  static constexpr int kRecycle = 48;
+  static constexpr int kRecycle = 24;
   std::vector<Vec> basis, abasis;  // W (A-orthonormal) and A W
   Vec aw = nullptr;
   // Extra unknowns solved with u (fault contact, coupling.hpp); null for the continuous model.
@@ -215,7 +215,8 @@ struct MechanicsSolver::Impl {
   // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
   void scatter_dummy_diag(int c);
 
-  void upload();
+  // Copies the assembled values into A: every row, or the rows of `changed_nodes` (owned).
+  void upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes);
 
   // ---- linear solve ---------------------------------------------------------------------------
   struct SolveResult {
