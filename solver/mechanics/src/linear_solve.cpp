@@ -43,13 +43,13 @@ void MechanicsSolver::Impl::setup_ksp() {
       UGS_PETSC(PCHYPRESetType(pc, "boomeramg"));
       // BoomerAMG for 3D elasticity on layered meshes (docs/mechanics.md, measured on the
       // thesis-like box): nodal coarsening of the 3 x 3 blocks, HMIS with extended+i
-      // interpolation capped at 4 entries, aggressive coarsening on the first level. (Vector
+      // interpolation capped at 4 entries, aggressive coarsening on the first two levels. (Vector
       // interpolation with the rigid-body modes tripled the operator complexity there.)
       set_default_options({{"-pc_hypre_boomeramg_nodal_coarsen", "6"},
                            {"-pc_hypre_boomeramg_coarsen_type", "HMIS"},
                            {"-pc_hypre_boomeramg_interp_type", "ext+i"},
                            {"-pc_hypre_boomeramg_P_max", "4"},
-                           {"-pc_hypre_boomeramg_agg_nl", "1"},
+                           {"-pc_hypre_boomeramg_agg_nl", "2"},
                            {"-pc_hypre_boomeramg_strong_threshold", "0.5"},
                            // One forward Gauss-Seidel sweep down, one backward up: the cycle stays
                            // symmetric (CG) at half the smoothing work of symmetric sweeps both ways.
