@@ -167,15 +167,14 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
         if (out_times.count(steps[k].time)) take[k] = 1;
       }
       if (last < steps.size()) take[last] = 1;
-      std::size_t n = 0, all = 0;
-      for (std::size_t k = 0; k < steps.size(); ++k)
-        if (steps[k].time > root->restart_time && steps[k].time <= until) n += take[k], ++all;
-      log(1, fmt::format("turning-point steps: {} of {} dates (turning points of the pressure, output dates, the last date)", n, all));
     }
     int since_checkpoint = 0;
+    std::size_t in_run = 0;  // dates between the restart and --until
     for (std::size_t k = 0; k < steps.size(); ++k) {
       const auto& s = steps[k];
-      if (s.time <= root->restart_time || s.time > until || !take[k]) continue;
+      if (s.time <= root->restart_time || s.time > until) continue;
+      ++in_run;
+      if (!take[k]) continue;
       dates.push_back(s.date);
       times.push_back(s.time);
       const bool out = outs.empty() || out_times.count(s.time);
@@ -185,6 +184,9 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
       if (cp) since_checkpoint = 0;
       is_checkpoint.push_back(cp);
     }
+    if (root->cs.steps == "turning-points")
+      log(1, fmt::format("turning-point steps: {} of {} dates (turning points of the pressure, output dates, the last date)",
+                         dates.size(), in_run));
   }
   dates = broadcast_strings(comm, dates);
   std::uint64_t nsteps = dates.size();
