@@ -262,6 +262,13 @@ TEST(SolveTool, FailingStepExitsOneAndSavesTheLastGoodState) {
   ASSERT_TRUE(fs::exists(d / "out_state.h5"));
   FieldSeriesReader st(d / "out_state.h5");
   EXPECT_EQ(st.steps()[0].date, "2000-01-01");
+  // The first step after a restart fails on 2 processes: the restart state is the last good one
+  // (every rank takes part in gathering it).
+  const auto again = test::run(test::solve_cmd(2) + " " + column_args(d, "fail.toml") + " -o " + d / "again.h5" + " --restart " +
+                               d / "out_state.h5");
+  EXPECT_EQ(again.exit_code, 1) << again.err;
+  EXPECT_NE(again.err.find("last good state (2000-01-01) saved"), std::string::npos) << again.err;
+  EXPECT_TRUE(fs::exists(d / "again_state.h5"));
 }
 
 struct BadCase {

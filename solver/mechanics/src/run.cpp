@@ -233,6 +233,7 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
 
   // 4. March over the steps.
   std::string last_good_date = rank == 0 ? root->restart_date : "";
+  broadcast(comm, last_good_date);  // every rank must agree on whether to gather a state below
   double last_good_time = rank == 0 ? root->restart_time : 0;
   for (std::uint64_t i = 0; i < nsteps; ++i) {
     const std::string label = fmt::format("step {}/{} ({})", i + 1, nsteps, dates[i]);
