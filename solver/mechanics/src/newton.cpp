@@ -38,12 +38,16 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
   rep.residuals.push_back(1.0);
   if (r0 == 0) return true;
   double rk = r0, rprev = r0;
-  // A step is nonlinear if an element is on the virgin branch or is expected to change direction.
+  // A step is nonlinear if an element is on the virgin branch or is expected to change direction
+  // (under sigma-max only a change from virgin loading: unloading and reloading share one stiffness).
   int nonlinear = 0;
-  for (std::size_t h = 0; h < hyp_cells.size() && !nonlinear; ++h)
-    nonlinear = guess[h] != committed[h].hypo.direction ||
+  for (std::size_t h = 0; h < hyp_cells.size() && !nonlinear; ++h) {
+    const fem::InversionRule rule = lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule;
+    nonlinear = (guess[h] != committed[h].hypo.direction &&
+                 (rule != fem::InversionRule::SigmaMax || committed_phase[h] == fem::LoadingPhase::Virgin)) ||
                 (guess[h] > 0 && start_sigma(static_cast<int>(h)) >= committed[h].hypo.sigma_max * (1 - 1e-9)) ||
-                lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule == fem::InversionRule::StressDependent;
+                rule == fem::InversionRule::StressDependent;
+  }
   int any_nonlinear = 0;
   MPI_Allreduce(&nonlinear, &any_nonlinear, 1, MPI_INT, MPI_MAX, lm.comm);
   double eta = any_nonlinear || coupling ? 1e-4 : 0.0;
@@ -80,7 +84,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     rk = residual();
     track_branches(k);
     long long moved = 0, moved_all = 0;
-    for (std::size_t h = 0; h < hyp_cells.size(); ++h) moved += before[h] != static_cast<int>(trial[h].phase);
+    for (std::size_t h = 0; h < hyp_cells.size(); ++h) moved += tangent_moved(h, before[h]);
     MPI_Allreduce(&moved, &moved_all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
     if (newton_monitor()) {
       long long c[4] = {0, 0, 0, 0};  // owned elements: virgin, unloading, reloading, held
@@ -125,6 +129,15 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
                     any_sat ? " (the virgin compressibility law cannot absorb the strain of some elements)" : "");
   if (coupling) why += coupling->diagnosis();
   return false;
+}
+
+bool MechanicsSolver::Impl::tangent_moved(std::size_t h, int phase_before) const {
+  const auto before = static_cast<fem::LoadingPhase>(phase_before), now = trial[h].phase;
+  if (before == now) return false;
+  // Under sigma-max, unloading and reloading share the stiffness c_M(sigma_max) / c_R.
+  if (lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule == fem::InversionRule::SigmaMax)
+    return (before == fem::LoadingPhase::Virgin) != (now == fem::LoadingPhase::Virgin);
+  return true;
 }
 
 void MechanicsSolver::Impl::track_branches(int k) {

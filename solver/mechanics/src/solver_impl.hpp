@@ -278,6 +278,8 @@ struct MechanicsSolver::Impl {
   // another partition). The held branches are checked at convergence (held_off_branch).
   static constexpr int kHoldOnFirstChangeFrom = 3;
   void track_branches(int k);
+  // Whether an element's tangent changed with its loading phase since `phase_before`.
+  bool tangent_moved(std::size_t h, int phase_before) const;
 
   // The consistency of the held branches at a converged iterate. A held element whose J ended on
   // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
