@@ -16,7 +16,7 @@ bool newton_monitor() {
 
 bool MechanicsSolver::Impl::branches_moved() const {
   long long mine = 0, all = 0;
-  for (std::size_t h = 0; h < assembled_phase.size(); ++h) mine += assembled_phase[h] != pc_phase[h];
+  for (std::size_t h = 0; h < assembled_phase.size(); ++h) mine += tangent_differs(h, assembled_phase[h], pc_phase[h]);
   MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
   return static_cast<double>(all) > 0.05 * static_cast<double>(n_hyp_global);
 }
@@ -131,13 +131,13 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
   return false;
 }
 
-bool MechanicsSolver::Impl::tangent_moved(std::size_t h, int phase_before) const {
-  const auto before = static_cast<fem::LoadingPhase>(phase_before), now = trial[h].phase;
-  if (before == now) return false;
-  // Under sigma-max, unloading and reloading share the stiffness c_M(sigma_max) / c_R.
-  if (lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule == fem::InversionRule::SigmaMax)
-    return (before == fem::LoadingPhase::Virgin) != (now == fem::LoadingPhase::Virgin);
-  return true;
+bool MechanicsSolver::Impl::tangent_differs(std::size_t h, int phase_a, int phase_b) const {
+  if (phase_a == phase_b) return false;
+  const auto unload_reload = [](int p) {
+    return p == static_cast<int>(fem::LoadingPhase::Unloading) || p == static_cast<int>(fem::LoadingPhase::Reloading);
+  };
+  return !(unload_reload(phase_a) && unload_reload(phase_b) &&
+           lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule == fem::InversionRule::SigmaMax);
 }
 
 void MechanicsSolver::Impl::track_branches(int k) {

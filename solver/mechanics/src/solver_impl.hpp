@@ -244,9 +244,9 @@ struct MechanicsSolver::Impl {
 
   SolveResult solve(double rtol, bool guess);
 
-  // True when many hypo-plastic elements changed branch since the preconditioner was built: their
-  // stiffness jumped by c_R, and a new setup (a few V-cycles) costs less than the iterations a stale
-  // hierarchy needs.
+  // True when many hypo-plastic elements changed to a branch of another stiffness since the
+  // preconditioner was built: their stiffness jumped by c_R, and a new setup (a few V-cycles) costs
+  // less than the iterations a stale hierarchy needs.
   bool branches_moved() const;
 
   // ---- predictor ------------------------------------------------------------------------------
@@ -278,8 +278,13 @@ struct MechanicsSolver::Impl {
   // another partition). The held branches are checked at convergence (held_off_branch).
   static constexpr int kHoldOnFirstChangeFrom = 3;
   void track_branches(int k);
+  // Whether an element's tangent differs between two loading phases (-1: none yet). Under
+  // sigma-max, unloading and reloading share the stiffness c_M(sigma_max) / c_R.
+  bool tangent_differs(std::size_t h, int phase_a, int phase_b) const;
   // Whether an element's tangent changed with its loading phase since `phase_before`.
-  bool tangent_moved(std::size_t h, int phase_before) const;
+  bool tangent_moved(std::size_t h, int phase_before) const {
+    return tangent_differs(h, phase_before, static_cast<int>(trial[h].phase));
+  }
 
   // The consistency of the held branches at a converged iterate. A held element whose J ended on
   // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
