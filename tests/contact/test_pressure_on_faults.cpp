@@ -2,6 +2,7 @@
 // model.msh, before ugs-faultinsert) drives the faulted mesh: every element gets the mean of its
 // corners' values in the flow file, and the twins ugs-faultinsert made get the value of the node they
 // were split from, so both faces of a fault see the same fluid pressure.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -78,6 +79,13 @@ TEST(PressureOnFaults, FlowFieldOfTheUnfaultedMeshDrivesTheFaultedOne) {
     for (auto n : model.tets[e]) mean += 0.25 * dp_of(faulted.nodes[n]);
     ASSERT_NEAR(cell[e], mean, 1e-9 * std::abs(mean)) << "element " << model.tet_tags[e];
   }
+  // The turning-point scan's view: the same values, for the forced elements only.
+  auto forced = history.forced_cell_dp(978307200.0);
+  ASSERT_EQ(forced.size(), history.forced_cells());
+  auto all = cell;
+  std::sort(forced.begin(), forced.end());
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(forced, all);
   // Every node, twins included, carries the value at its position (linear field: exact).
   const auto node = history.node_dp(978307200.0);
   std::size_t twins = 0;

@@ -153,6 +153,7 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
     UGS_PETSC(KSPGetTolerances(ksp, &a, &b, &c, &user_maxit_));
   }
   bool fresh = !pc_valid;
+  const char* why = fresh ? "first" : "";
   if (!pc_valid) rebuild_pc();
   if (mat_changed) {
     // A factorization is kept while the iterations it costs beyond a fresh one, over the next
@@ -160,11 +161,12 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
     // tens of solves); a multigrid hierarchy while it stays near its first rate and few
     // elements changed branch (a setup costs a few cycles).
     const double excess = (last_ipd - baseline_ipd) * last_decades * seconds_per_iteration * kFactorHorizon;
-    const bool keep = factored() ? excess <= setup_seconds
-                                 : last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0) && !branches_moved();
+    const bool rate_ok = factored() ? excess <= setup_seconds : last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0);
+    const bool keep = rate_ok && (factored() || !branches_moved());
     const bool reuse = pc_valid && opt.reuse_preconditioner && keep;
     if (reuse) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
     else rebuild_pc();
+    if (!reuse && !fresh) why = !opt.reuse_preconditioner ? "always" : !rate_ok ? "rate" : "branches";
     fresh = !reuse;
     mat_changed = false;
   }
@@ -178,9 +180,11 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
   if (!fresh && s.reason < 0) {
     rebuild_pc();
     fresh = true;
+    why = "budget";
     s = timed_solve(rtol, false, -1, fresh);
     its_total += s.iterations;
   }
+  s.setup = why;
   last_decades = std::max(std::log10(1.0 / std::max(s.reduction, 1e-300)), 0.3);
   last_ipd = s.iterations / last_decades;
   if (fresh) baseline_ipd = last_ipd;

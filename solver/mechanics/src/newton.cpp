@@ -97,9 +97,10 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
       }
       MPI_Allreduce(MPI_IN_PLACE, c, 4, MPI_LONG_LONG, MPI_SUM, lm.comm);
       UGS_PETSC(PetscPrintf(lm.comm,
-                            "  Newton %d: linear rtol %.1e, %d iterations; residual %.3e; branch changes %lld (virgin %lld, "
-                            "unloading %lld, reloading %lld), held %lld\n",
-                            k, rtol, static_cast<int>(s.iterations), rk / r0, moved_all, c[0], c[1], c[2], c[3]));
+                            "  Newton %d: linear rtol %.1e, %d iterations%s%s; residual %.3e; branch changes %lld (virgin "
+                            "%lld, unloading %lld, reloading %lld), held %lld\n",
+                            k, rtol, static_cast<int>(s.iterations), *s.setup ? ", preconditioner set up: " : "",
+                            s.setup, rk / r0, moved_all, c[0], c[1], c[2], c[3]));
     }
     rep.residuals.push_back(rk / r0);
     if (!std::isfinite(rk)) {

@@ -182,6 +182,21 @@ std::vector<double> PressureHistory::cell_dp(double time) {
   return dp;
 }
 
+std::vector<double> PressureHistory::forced_cell_dp(double time) {
+  std::size_t n = 0;
+  for (const auto& cells : file_cells_) n += cells.size();
+  std::vector<double> dp;
+  dp.reserve(n);
+  for (std::size_t fi = 0; fi < files_.size(); ++fi) {
+    const auto v = file_values(*files_[fi], time);
+    for (const std::uint32_t e : file_cells_[fi]) {
+      const auto& n = cell_nodes_[e];
+      dp.push_back(0.25 * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]));
+    }
+  }
+  return dp;
+}
+
 std::vector<double> PressureHistory::node_dp(double time) {
   std::vector<double> dp(num_nodes_, 0.0);
   for (auto& f : files_) {

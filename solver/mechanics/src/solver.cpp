@@ -87,6 +87,10 @@ CellResults MechanicsSolver::gather_cells() {
   UGS_PETSC(VecGhostGetLocalForm(s.u, &ul));
   UGS_PETSC(VecGetArrayRead(ul, &ua));
   std::vector<double> strain, stress, dstress, cm, state, smax;
+  const auto owned = static_cast<std::size_t>(
+      std::count_if(lm.cell_owned.begin(), lm.cell_owned.end(), [](std::uint8_t o) { return o != 0; }));
+  for (auto* v : {&strain, &stress, &dstress}) v->reserve(6 * owned);
+  for (auto* v : {&cm, &state, &smax}) v->reserve(owned);
   for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
     if (!lm.cell_owned[ci]) continue;
     const int c = static_cast<int>(ci);

@@ -223,6 +223,10 @@ struct MechanicsSolver::Impl {
     int iterations = 0;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     double reduction = 0;
+    // Why the preconditioner was set up for this solve (-ugs_newton_monitor): "" kept, "first",
+    // "branches" (elements changed stiffness), "rate" (iterations per decade), "budget" (a kept
+    // one failed and the solve was repeated).
+    const char* setup = "";
   };
 
   // GAMG's fine-level smoother runs on the preconditioning matrix: when A changes (hypo-plastic

@@ -34,7 +34,8 @@ void TurningPoints::add(const std::vector<double>& dp) {
 
 std::vector<char> turning_points(PressureHistory& history, double tolerance) {
   TurningPoints tp(tolerance);
-  for (const auto& s : history.steps()) tp.add(history.cell_dp(s.time));
+  // Elements under no pressure field stay at 0 and never turn: they are left out.
+  for (const auto& s : history.steps()) tp.add(history.forced_cell_dp(s.time));
   return tp.turns();
 }
 

@@ -39,6 +39,9 @@ public:
   // Pressure change [Pa] per element (model tetrahedra order) and summed per mesh node at time t.
   std::vector<double> cell_dp(double time);
   std::vector<double> node_dp(double time);
+  // The pressure change [Pa] of the elements under a pressure field only (a sixth of the thesis
+  // model), file by file, in the same order at every time: the others stay at 0.
+  std::vector<double> forced_cell_dp(double time);
   // Number of elements under a pressure field.
   std::size_t forced_cells() const;
   // Notes about clamping (a file that starts late or ends early), for the log.
