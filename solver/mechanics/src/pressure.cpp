@@ -183,10 +183,10 @@ std::vector<double> PressureHistory::cell_dp(double time) {
 }
 
 std::vector<double> PressureHistory::forced_cell_dp(double time) {
-  std::size_t n = 0;
-  for (const auto& cells : file_cells_) n += cells.size();
+  std::size_t forced = 0;
+  for (const auto& cells : file_cells_) forced += cells.size();
   std::vector<double> dp;
-  dp.reserve(n);
+  dp.reserve(forced);
   for (std::size_t fi = 0; fi < files_.size(); ++fi) {
     const auto v = file_values(*files_[fi], time);
     for (const std::uint32_t e : file_cells_[fi]) {

@@ -6,9 +6,9 @@ namespace ugs {
 
 // Deflating pays when the shuffled bytes shrink to at most `worth` of their size. Judged on up to
 // `samples` evenly spaced samples of `sample_bytes` (the first at the start, the last at the end),
-// so the probe costs a few milliseconds whatever the dataset's size. Stress and strain fields in double precision shrink only to ~0.8
-// and cost zlib's whole time; indices, states and fields that are zero in most cells shrink
-// to ~0.1.
+// so the probe costs a few milliseconds whatever the dataset's size. Stress and strain fields in
+// double precision shrink only to ~0.8 and cost zlib's whole time; indices, states and fields
+// that are zero in most cells shrink to ~0.1.
 struct DeflateProbe {
   int level = 1;
   double worth = 0.7;
