@@ -171,22 +171,17 @@ std::vector<double> PressureHistory::file_values(File& f, double time) {
 }
 
 std::vector<double> PressureHistory::cell_dp(double time) {
+  const std::vector<double> forced = forced_cell_dp(time);
   std::vector<double> dp(cell_file_.size(), 0.0);
-  for (std::size_t fi = 0; fi < files_.size(); ++fi) {
-    const auto v = file_values(*files_[fi], time);
-    for (const std::uint32_t e : file_cells_[fi]) {
-      const auto& n = cell_nodes_[e];
-      dp[e] = 0.25 * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]);
-    }
-  }
+  std::size_t k = 0;
+  for (const auto& cells : file_cells_)
+    for (const std::uint32_t e : cells) dp[e] = forced[k++];
   return dp;
 }
 
 std::vector<double> PressureHistory::forced_cell_dp(double time) {
-  std::size_t forced = 0;
-  for (const auto& cells : file_cells_) forced += cells.size();
   std::vector<double> dp;
-  dp.reserve(forced);
+  dp.reserve(forced_cells());
   for (std::size_t fi = 0; fi < files_.size(); ++fi) {
     const auto v = file_values(*files_[fi], time);
     for (const std::uint32_t e : file_cells_[fi]) {
@@ -208,7 +203,9 @@ std::vector<double> PressureHistory::node_dp(double time) {
 }
 
 std::size_t PressureHistory::forced_cells() const {
-  return static_cast<std::size_t>(std::count_if(cell_file_.begin(), cell_file_.end(), [](std::int32_t f) { return f >= 0; }));
+  std::size_t n = 0;
+  for (const auto& cells : file_cells_) n += cells.size();
+  return n;
 }
 
 std::vector<std::string> PressureHistory::notes() const {
