@@ -1,5 +1,8 @@
 #include "ugs/formats/toml_reader.hpp"
 
+#include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -18,13 +21,35 @@ std::string type_name(const toml::value& v) {
     default: return "a date/time";
   }
 }
+
+// Every float of a document must be finite: TOML allows inf and nan, no input of ours means them.
+// `key` is the dotted path of `v` ("water.compressibility_per_MPa", "material[1].K_m_per_s[0]").
+void reject_non_finite(const toml::value& v, const std::string& key, const std::string& file) {
+  if (v.is_floating()) {
+    const double x = v.as_floating();
+    if (!std::isfinite(x)) {
+      const auto line = v.location().line();
+      throw InputError(line > 0 ? fmt::format("{}:{}", file, line) : file,
+                       fmt::format("{} = {} is not a finite number", key, x));
+    }
+  } else if (v.is_array()) {
+    std::size_t i = 0;
+    for (const auto& e : v.as_array()) reject_non_finite(e, fmt::format("{}[{}]", key, i++), file);
+  } else if (v.is_table()) {
+    for (const auto& [name, e] : v.as_table()) reject_non_finite(e, key.empty() ? name : key + "." + name, file);
+  }
+}
 }  // namespace
 
 TomlTable TomlTable::parse_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory (expected a TOML file)");
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(path, "cannot open");
+  if (!f) throw InputError(path, fmt::format("cannot open: {}", std::strerror(errno)));
   try {
-    return TomlTable(toml::parse(f, path), path, "");
+    toml::value doc = toml::parse(f, path);
+    reject_non_finite(doc, "", path);
+    return TomlTable(std::move(doc), path, "");
   } catch (const toml::syntax_error& e) {
     std::string msg = e.what();
     // toml11's message is multi-line; keep its first line.

@@ -63,3 +63,30 @@ TEST(CaseFile, SyntaxErrorNamesTheLine) {
   const auto e = error_of("crs = \"EPSG:32632\"\n[model\n");
   EXPECT_NE(e.find("c.toml:2: TOML syntax error"), std::string::npos) << e;
 }
+
+// Issue 20: TOML allows inf and nan; no input of ours means them. Every float of the document is
+// checked at parse time (so every tool with --case or --strata refuses them), with file:line, the
+// dotted key and the value; unused tables are checked too.
+TEST(CaseFile, InfAndNanAreRefusedEverywhere) {
+  auto tail = [](const std::string& e) { return e.substr(e.find("c.toml:")); };
+  EXPECT_EQ(tail(error_of("crs = \"EPSG:32632\"\n[water]\ncompressibility_per_MPa = inf\n")),
+            "c.toml:3: water.compressibility_per_MPa = inf is not a finite number");
+  EXPECT_EQ(tail(error_of("[[material]]\nname = \"a\"\nK_m_per_s = [1e-7, -inf, 1e-8]\n")),
+            "c.toml:3: material[0].K_m_per_s[1] = -inf is not a finite number");
+  EXPECT_EQ(tail(error_of("[initial_stress]\nk0 = nan\n")), "c.toml:2: initial_stress.k0 = nan is not a finite number");
+  EXPECT_EQ(tail(error_of("[scenario]\npressure_scale = +inf\n")),
+            "c.toml:2: scenario.pressure_scale = inf is not a finite number");
+  EXPECT_EQ(tail(error_of("[water]\ncompressibility_per_MPa = -1e-4\n")),
+            "c.toml:2: 'water.compressibility_per_MPa': must not be negative, got -0.0001");
+}
+
+TEST(CaseFile, DirectoryIsNamedAsSuch) {
+  const auto dir = test::temp_dir("case-dir");
+  try {
+    read_case_file(dir.string());
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir.string() + ": is a directory (expected a TOML file)");
+  }
+  fs::remove_all(dir);
+}

@@ -315,3 +315,48 @@ TEST(FlowTwin, PoolCAquiferMapsIn1960And1964) {
   EXPECT_EQ(t.columns()[1], "Pool_C_influx_m3");
   EXPECT_GT(t.number(t.rows() - 1, 1), 1e5);  // aquifer water encroached into Pool C by 1964
 }
+
+// Issue 20: every number of the case file is finite and in range, or exit 2 naming file:line, key and
+// value; a directory given as the case file is named as such; a solve that still yields a NaN or an
+// infinity stops with exit 1 and writes nothing.
+TEST(FlowCli, NonFiniteAndOutOfRangeNumbers) {
+  const std::string k = "K_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]";
+  const auto aquifer_k = kCase.find(k, kCase.find("\"aquifer\""));
+  auto with_k = [&](const std::string& by) { return std::string(kCase).replace(aquifer_k, k.size(), by); };
+  struct Bad {
+    std::string tag, text, where, what;
+  } bad[] = {
+      {"k-inf", with_k("K_m_per_s = [inf, 2.04e-7, 2.04e-8]"), "case.toml:15", "material[1].K_m_per_s[0] = inf is not a finite number"},
+      {"k-minus-inf", with_k("K_m_per_s = [2.04e-7, -inf, 2.04e-8]"), "case.toml:15",
+       "material[1].K_m_per_s[1] = -inf is not a finite number"},
+      {"k-nan", with_k("K_m_per_s = [2.04e-7, 2.04e-7, nan]"), "case.toml:15", "material[1].K_m_per_s[2] = nan is not a finite number"},
+      {"beta-inf", kCase + "\n[water]\ncompressibility_per_MPa = inf\n", "case.toml:30",
+       "water.compressibility_per_MPa = inf is not a finite number"},
+      {"beta-minus-inf", kCase + "\n[water]\ncompressibility_per_MPa = -inf\n", "case.toml:30",
+       "water.compressibility_per_MPa = -inf is not a finite number"},
+      {"beta-negative", kCase + "\n[water]\ncompressibility_per_MPa = -4.4e-4\n", "case.toml:30",
+       "'water.compressibility_per_MPa': must not be negative, got -0.00044"},
+      {"k-zero", with_k("K_m_per_s = [0, 2.04e-7, 2.04e-8]"), "case.toml:15", "conductivities must be positive, got 0"},
+      {"cm-b-negative", with_k(k + "\ncm_b = -3"), "case.toml:", "'material[1].cm_b': must not be negative"},
+  };
+  for (const auto& b : bad) {
+    SCOPED_TRACE(b.tag);
+    const Case c = make_case("nf-" + b.tag, b.text);
+    expect_bad_input(c, test::run(c.flow("-o dp.h5")), b.where, b.what);
+  }
+  {  // a directory as the case file
+    const Case c = make_case("nf-dir");
+    fs::remove(c.dir / "case.toml");
+    fs::create_directory(c.dir / "case.toml");
+    expect_bad_input(c, test::run(c.flow("-o dp.h5")), "case.toml", "case.toml: is a directory (expected a TOML file)");
+  }
+  {  // finite but absurd: K = 1e308 m/s overflows the conductances; never NaN with exit 0
+    const Case c = make_case("nf-huge", with_k("K_m_per_s = [1e308, 1e308, 1e308]"));
+    const auto r = test::run(c.flow("-q -o dp.h5"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(std::regex_search(r.err, std::regex("^ugs-flow: error: .*is -?(nan|inf)"))) << r.err;
+    EXPECT_FALSE(fs::exists(c.dir / "dp.h5"));
+    EXPECT_FALSE(fs::exists(c.dir / "dp_influx.csv"));
+  }
+}

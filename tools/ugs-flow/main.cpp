@@ -230,6 +230,18 @@ void run(const Options& o, cli::Tool& tool) {
   topt.cache_capacity = o.cache;
   const TransientResult res = run_transient(fm, grid, topt, [&](const DateState& s) {
     progress.update(s.index);
+    // Never write a NaN or an infinity: a failed step stops the run here (exit 1), with nothing written.
+    for (std::size_t d = 0; d < s.dp->size(); ++d)
+      if (!std::isfinite((*s.dp)[d])) {
+        const auto n = std::find(fm.dof_of_node.begin(), fm.dof_of_node.end(), d) - fm.dof_of_node.begin();
+        throw ComputeError(fmt::format("the pressure change at node {} on {} is {} (the flow solve failed: check K_m_per_s, "
+                                       "porosity and compressibilities of the aquifer materials)",
+                                       mesh.node_tags[n], format_iso_date(s.date), (*s.dp)[d]));
+      }
+    for (std::size_t q = 0; q < s.influx->size(); ++q)
+      if (!std::isfinite((*s.influx)[q]))
+        throw ComputeError(fmt::format("the water influx into pool '{}' on {} is {} (the flow solve failed)", fm.pools[q].name,
+                                       format_iso_date(s.date), (*s.influx)[q]));
     if (!write_date[s.index]) return;
     std::vector<Field> fields;
     Field dp{"dp", 1, std::vector<double>(mesh.num_nodes(), 0.0)};

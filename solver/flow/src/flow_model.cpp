@@ -289,6 +289,12 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
         a[position(t.dof[i], t.dof[j])] += vol * (g[i][0] * kx * g[j][0] + g[i][1] * ky * g[j][1] + g[i][2] * kz * g[j][2]);
     const double zc = 0.25 * (x0[2] + x1[2] + x2[2] + x3[2]);
     const double s = storage_coefficient(c, *spec[t.material], zc);
+    if (!(s > 0) || !std::isfinite(s))
+      throw InputError(spec[t.material]->where,
+                       fmt::format("material '{}': specific storage gamma_w (n beta + c_M) = {:g} 1/m at z = {:g} m is not a "
+                                   "positive finite number (porosity {:g}, water compressibility {:g} 1/Pa, c_M {:g} 1/Pa)",
+                                   mat.name, s * c.water_unit_weight, zc, mat.porosity, c.water_compressibility,
+                                   s - mat.porosity * c.water_compressibility));
     const double cm = s - mat.porosity * c.water_compressibility;
     if (!cm_seen[t.material]) mat.cm_min = mat.cm_max = cm, cm_seen[t.material] = 1;
     mat.cm_min = std::min(mat.cm_min, cm), mat.cm_max = std::max(mat.cm_max, cm);
