@@ -184,7 +184,7 @@ CsvTable CsvTable::read(InputStream& in) {
 }
 
 CsvTable CsvTable::read(const std::string& path) {
-  auto in = InputStream::open(path);
+  auto in = InputStream::open(path, "a CSV file");
   return read(*in);
 }
 

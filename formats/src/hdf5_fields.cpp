@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <tuple>
 
@@ -362,6 +363,8 @@ const std::string& FieldSeriesWriter::xdmf_path() const { return impl_->xdmf_pat
 
 struct FieldSeriesReader::Impl {
   explicit Impl(const std::string& p) : path(p) {
+    if (std::error_code ec; std::filesystem::is_directory(path, ec))
+      throw InputError(path, "is a directory (expected an HDF5 file)");
     if (std::FILE* f = std::fopen(path.c_str(), "rb")) std::fclose(f);
     else throw InputError(path, fmt::format("cannot open: {}", std::strerror(errno)));
     if (H5Fis_hdf5(path.c_str()) <= 0) fail("not an HDF5 file");

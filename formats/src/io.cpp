@@ -18,24 +18,24 @@ constexpr std::size_t kBufferSize = 1 << 20;
 std::string errno_text() { return std::strerror(errno); }
 }  // namespace
 
-std::unique_ptr<InputStream> InputStream::open(const std::string& path) {
+std::unique_ptr<InputStream> InputStream::open(const std::string& path, const std::string& expected) {
   std::unique_ptr<InputStream> in(new InputStream);
   if (path.empty() || path == "-") {
     in->file_ = stdin;
     in->name_ = "<stdin>";
   } else {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+      throw InputError(path, "is a directory (expected " + expected + ")");
     in->file_ = std::fopen(path.c_str(), "rb");
     if (!in->file_) throw InputError(path, "cannot open: " + errno_text());
     in->owns_file_ = true;
     in->name_ = path;
   }
   struct stat st {};
-  if (fstat(fileno(in->file_), &st) == 0 && S_ISREG(st.st_mode)) {
-    if (S_ISDIR(st.st_mode)) throw InputError(in->name_, "is a directory");
-    in->size_ = static_cast<std::uint64_t>(st.st_size);
-  } else if (fstat(fileno(in->file_), &st) == 0 && S_ISDIR(st.st_mode)) {
-    throw InputError(in->name_, "is a directory");
-  }
+  if (fstat(fileno(in->file_), &st) == 0 && S_ISDIR(st.st_mode))
+    throw InputError(in->name_, "is a directory (expected " + expected + ")");
+  if (fstat(fileno(in->file_), &st) == 0 && S_ISREG(st.st_mode)) in->size_ = static_cast<std::uint64_t>(st.st_size);
   in->buf_.resize(kBufferSize);
   return in;
 }

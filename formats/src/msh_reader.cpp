@@ -368,7 +368,7 @@ private:
 Mesh read_msh(InputStream& in, const MshLimits& limits) { return MshReader(in, limits).read(); }
 
 Mesh read_msh(const std::string& path) {
-  auto in = InputStream::open(path);
+  auto in = InputStream::open(path, "an MSH file");
   return read_msh(*in);
 }
 

@@ -1,6 +1,10 @@
 #include "ugs/meshing/geodata.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -103,9 +107,20 @@ std::optional<std::string> Feature::text_of(const std::string& field) const {
   return it->second;
 }
 
+namespace {
+// Why GDAL could not open `path`: a missing file or a directory is said so, not as GDAL's "no reason".
+[[noreturn]] void open_failed(const std::string& path, const std::string& as, const std::string& expected) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw InputError(path, fmt::format("cannot open: {}", std::strerror(errno)));
+  if (S_ISDIR(st.st_mode)) throw InputError(path, fmt::format("is a directory (expected {})", expected));
+  const char* m = CPLGetLastErrorMsg();
+  throw InputError(path, fmt::format("cannot open as {}: {}", as, m && *m ? m : "GDAL does not recognise its format"));
+}
+}  // namespace
+
 GdalDatasetPtr open_vector(const std::string& path) {
   GdalDatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  if (!ds) throw InputError(path, "cannot open as a vector file: " + gdal_error());
+  if (!ds) open_failed(path, "a vector file", "a vector file: GeoJSON, GeoPackage, Shapefile, ...");
   if (ds->GetLayerCount() == 0) throw InputError(path, "has no vector layer");
   return ds;
 }
@@ -235,7 +250,7 @@ bool PolygonSet::contains(const XY& p) const {
 std::string raster_crs(const std::string& path) {
   QuietGdal quiet;
   GdalDatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) throw InputError(path, "cannot open as a raster: " + gdal_error());
+  if (!ds) open_failed(path, "a raster", "a raster file: GeoTIFF, ...");
   const OGRSpatialReference* rs = ds->GetSpatialRef();
   return rs ? wkt_of(*rs) : "";
 }
@@ -243,7 +258,7 @@ std::string raster_crs(const std::string& path) {
 RasterSampling sample_raster(const std::string& path, int band_no, std::span<const XY> points, const std::string& points_wkt) {
   QuietGdal quiet;
   GdalDatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) throw InputError(path, "cannot open as a raster: " + gdal_error());
+  if (!ds) open_failed(path, "a raster", "a raster file: GeoTIFF, ...");
   if (band_no < 1 || band_no > ds->GetRasterCount())
     throw InputError(path, fmt::format("has {} band(s); band {} does not exist", ds->GetRasterCount(), band_no));
   double gt[6], inv[6];

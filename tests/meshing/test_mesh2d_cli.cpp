@@ -172,3 +172,16 @@ TEST_F(Mesh2dCli, BadInputs) {
   expect_bad("--box 680000/686000/4950000/4954000 --hmax 500 --crs EPSG:99999", "unknown coordinate reference system");
   expect_bad("--box 680000/686000/4950000/4954000 --hmax -5", "--hmax");
 }
+
+// Issue 20: a directory, a missing file or a file GDAL cannot read, given as a vector input: one
+// line naming the file and what was expected (GDAL said "no reason given").
+TEST_F(Mesh2dCli, DirectoryOrUnreadableVectorFile) {
+  fs::create_directory(p("adir"));
+  test::spit(p("text.geojson"), "not json at all\n");
+  const std::string box = "--box 680000/686000/4950000/4954000 --hmax 500 ";
+  expect_bad("--domain " + p("adir").string(),
+             p("adir").string() + ": is a directory (expected a vector file: GeoJSON, GeoPackage, Shapefile, ...)");
+  expect_bad(box + "--refine " + p("adir").string(), p("adir").string() + ": is a directory (expected a vector file");
+  expect_bad(box + "--fault " + p("nope.geojson").string(), p("nope.geojson").string() + ": cannot open: No such file or directory");
+  expect_bad(box + "--fault " + p("text.geojson").string(), p("text.geojson").string() + ": cannot open as a vector file: ");
+}

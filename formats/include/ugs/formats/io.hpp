@@ -16,8 +16,9 @@ namespace ugs {
 
 class InputStream {
 public:
-  // Opens `path`; "-" or "" means stdin. Throws InputError if it cannot be opened.
-  static std::unique_ptr<InputStream> open(const std::string& path);
+  // Opens `path`; "-" or "" means stdin. Throws InputError if it cannot be opened or is a directory
+  // ("model.msh: is a directory (expected an MSH file)": `expected` names the kind of file).
+  static std::unique_ptr<InputStream> open(const std::string& path, const std::string& expected = "a file");
   // Wraps an in-memory buffer (tests).
   static std::unique_ptr<InputStream> from_string(std::string data, std::string name);
   ~InputStream();
