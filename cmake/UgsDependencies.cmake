@@ -49,3 +49,13 @@ add_library(ugs::cholmod ALIAS ugs_ext_cholmod)
 
 find_package(CGAL REQUIRED)
 find_package(NLopt REQUIRED)
+
+# opm-common's EclIO reads ECLIPSE / OPM Flow binary output (ugs-import-eclipse). Debian's CMake
+# config of opm-common wants targets (OpenMP, Boost::system, fmt) we do not otherwise need: the
+# header folder and the library are all EclIO uses.
+find_path(OPM_COMMON_INCLUDE_DIR opm/io/eclipse/EGrid.hpp REQUIRED)
+find_library(OPM_COMMON_LIBRARY opmcommon REQUIRED)
+add_library(ugs_ext_opm_common INTERFACE)
+target_include_directories(ugs_ext_opm_common SYSTEM INTERFACE ${OPM_COMMON_INCLUDE_DIR})
+target_link_libraries(ugs_ext_opm_common INTERFACE ${OPM_COMMON_LIBRARY})
+add_library(ugs::opm_common ALIAS ugs_ext_opm_common)

@@ -1,0 +1,331 @@
+// ECLIPSE binary output through opm-common's EclIO (see eclipse.hpp and docs/eclipse.md).
+#include "ugs/eclipse/eclipse.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+#include <fmt/format.h>
+#include <opm/io/eclipse/EGrid.hpp>
+#include <opm/io/eclipse/EclFile.hpp>
+
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
+
+namespace ugs::eclipse {
+namespace fs = std::filesystem;
+namespace {
+
+std::string trim_upper(std::string s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  std::size_t b = 0;
+  while (b < s.size() && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  s.erase(0, b);
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Metres per unit of a GRIDUNIT / MAPUNITS name.
+double length_unit_m(const std::string& unit, const std::string& where) {
+  if (unit == "METRES" || unit == "METERS" || unit == "M") return 1.0;
+  if (unit == "FEET" || unit == "FT") return 0.3048;
+  if (unit == "CM") return 0.01;
+  throw InputError(where, fmt::format("unknown length unit '{}' (expected METRES, FEET or CM)", unit));
+}
+
+// Runs an EclIO call; whatever it throws (missing file, "tail not matching header" of a truncated
+// file, an array of an unexpected type) becomes an InputError naming the file.
+template <class F>
+auto eclio(const std::string& path, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::string what = e.what();
+    // EclIO prefixes its source position: "[./src/opm/io/eclipse/EclFile.cpp:630] ..."
+    if (!what.empty() && what.front() == '[') {
+      const auto close = what.find("] ");
+      if (close != std::string::npos) what.erase(0, close + 2);
+    }
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw InputError(path, fmt::format("cannot be read as ECLIPSE binary output: {}", what));
+  }
+}
+
+// A file cut short keeps its array headers readable up to the cut, and EclFile reads headers only:
+// loading the last array with data checks that its tail is there ("tail not matching header").
+void check_complete(Opm::EclIO::EclFile& f) {
+  const auto list = f.getList();
+  for (std::size_t i = list.size(); i-- > 0;)
+    if (std::get<2>(list[i]) > 0) {
+      f.loadData(static_cast<int>(i));
+      f.clearData();
+      return;
+    }
+}
+
+}  // namespace
+
+std::array<int, 3> Grid::ijk(std::uint32_t g) const {
+  const int nx = dims[0], ny = dims[1];
+  const int i = static_cast<int>(g % static_cast<std::uint32_t>(nx));
+  const int j = static_cast<int>((g / static_cast<std::uint32_t>(nx)) % static_cast<std::uint32_t>(ny));
+  const int k = static_cast<int>(g / (static_cast<std::uint32_t>(nx) * static_cast<std::uint32_t>(ny)));
+  return {i, j, k};
+}
+
+Grid read_egrid(const std::string& path, const Point3& offset) {
+  if (!fs::exists(path)) throw InputError(path, "no such file (expected the EGRID of the simulation, CASE.EGRID)");
+  Grid grid;
+  grid.path = path;
+  eclio(path, [&] {
+    Opm::EclIO::EGrid eg(path);
+    check_complete(eg);
+    if (eg.is_radial()) throw InputError(path, "radial grid (only Cartesian corner-point grids are imported)");
+    const auto n = eg.dimension();
+    if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 ||
+        static_cast<double>(n[0]) * n[1] * n[2] > 2.0e9)
+      throw InputError(path, fmt::format("grid dimensions {} x {} x {} (expected positive, at most 2e9 cells)", n[0], n[1], n[2]));
+    grid.dims = n;
+    const std::size_t total = static_cast<std::size_t>(n[0]) * n[1] * n[2];
+    grid.active.assign(total, -1);
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const int a = eg.active_index(i, j, k);
+          if (a < 0) continue;
+          const std::size_t g = static_cast<std::size_t>(i) + static_cast<std::size_t>(n[0]) * (j + static_cast<std::size_t>(n[1]) * k);
+          if (static_cast<std::size_t>(a) != grid.global.size())
+            throw InputError(path, fmt::format("active cell ({},{},{}) has active index {}, expected {}", i + 1, j + 1, k + 1, a,
+                                               grid.global.size()));
+          grid.active[g] = a;
+          grid.global.push_back(static_cast<std::uint32_t>(g));
+        }
+    if (grid.global.size() != static_cast<std::size_t>(eg.activeCells()))
+      throw InputError(path, fmt::format("{} active cells in ACTNUM, {} in GRIDHEAD", grid.global.size(), eg.activeCells()));
+    if (grid.global.empty()) throw InputError(path, "no active cell (ACTNUM is all 0)");
+
+    grid.length_unit = "METRES";
+    if (eg.hasKey("GRIDUNIT")) {
+      const auto& gu = eg.get<std::string>("GRIDUNIT");
+      if (!gu.empty()) grid.length_unit = trim_upper(gu[0]);
+    }
+    const double L = length_unit_m(grid.length_unit, path + ": GRIDUNIT");
+    // MAPAXES: Y-axis point, origin, X-axis point, in MAPUNITS (else the grid's unit); float32 in
+    // the file, used in double from here on.
+    const auto& ma = eg.get_mapaxes();
+    std::array<double, 2> origin{0, 0}, ex{1, 0}, ey{0, 1};
+    if (!ma.empty()) {
+      if (ma.size() != 6) throw InputError(path, fmt::format("MAPAXES has {} values (expected 6)", ma.size()));
+      const std::string mu = trim_upper(eg.get_mapunits());
+      const double M = mu.empty() ? L : length_unit_m(mu, path + ": MAPUNITS");
+      std::array<double, 6> p;
+      for (int q = 0; q < 6; ++q) {
+        p[q] = static_cast<double>(ma[q]) * M;
+        if (!std::isfinite(p[q])) throw InputError(path, fmt::format("MAPAXES value {} is not finite", q + 1));
+      }
+      origin = {p[2], p[3]};
+      ex = {p[4] - p[2], p[5] - p[3]};
+      ey = {p[0] - p[2], p[1] - p[3]};
+      const double lx = std::hypot(ex[0], ex[1]), ly = std::hypot(ey[0], ey[1]);
+      if (!(lx > 0) || !(ly > 0))
+        throw InputError(path, "MAPAXES: the X- or Y-axis point equals the origin (expected three distinct points)");
+      ex = {ex[0] / lx, ex[1] / lx};
+      ey = {ey[0] / ly, ey[1] / ly};
+      grid.mapaxes = true;
+    }
+    if (eg.hasKey("NNC1")) grid.nnc = eg.get<int>("NNC1").size();
+
+    grid.corners.resize(grid.global.size());
+    std::array<double, 8> X, Y, Z;
+    for (std::size_t a = 0; a < grid.global.size(); ++a) {
+      eg.getCellCorners(static_cast<int>(grid.global[a]), X, Y, Z);
+      for (int c = 0; c < 8; ++c) {
+        const double x = X[c] * L, y = Y[c] * L, depth = Z[c] * L;
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(depth)) {
+          const auto ijk = grid.ijk(grid.global[a]);
+          throw InputError(path, fmt::format("cell ({},{},{}): corner {} is not finite", ijk[0] + 1, ijk[1] + 1, ijk[2] + 1, c + 1));
+        }
+        grid.corners[a][c] = {origin[0] + x * ex[0] + y * ey[0] + offset[0], origin[1] + x * ex[1] + y * ey[1] + offset[1],
+                              -depth + offset[2]};
+      }
+    }
+  });
+  return grid;
+}
+
+double pressure_unit_pa(int units, const std::string& where) {
+  switch (units) {
+    case 1: return 1.0e5;             // METRIC: bar
+    case 2: return 6894.757293168361; // FIELD: psi
+    case 3:                           // LAB: atm
+    case 4: return 101325.0;          // PVT-M: atm
+    default:
+      throw InputError(where, fmt::format("unit system {} in INTEHEAD item 3 (expected 1 METRIC, 2 FIELD, 3 LAB or 4 PVT-M)", units));
+  }
+}
+
+std::string default_restart(const std::string& egrid_path) {
+  fs::path p(egrid_path);
+  const bool lower = !p.extension().string().empty() && std::islower(static_cast<unsigned char>(p.extension().string().back()));
+  auto with = [&](std::string ext) {
+    if (lower)
+      for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return fs::path(p).replace_extension(ext).string();
+  };
+  for (const char* ext : {".UNRST", ".FUNRST", ".X0000", ".F0000"})
+    if (fs::exists(with(ext))) return with(ext);
+  return "";
+}
+
+struct Restart::Impl {
+  std::string path;
+  struct Source {
+    std::string file;
+    std::unique_ptr<Opm::EclIO::EclFile> ecl;
+  };
+  std::vector<Source> sources;
+  struct Step {
+    std::size_t source;
+    int pressure_index;
+    std::int64_t size;
+    int nx, ny, nz, nactive;
+  };
+  std::vector<Step> where;
+  std::vector<RestartStep> steps;
+};
+
+Restart::Restart(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  // Non-unified: CASE.X0001 (binary) or CASE.F0001 (formatted); every numbered sibling is a step.
+  static const std::regex separate(R"(\.([XxFf])([0-9]{4})$)");
+  std::smatch m;
+  const std::string name = fs::path(path).filename().string();
+  std::vector<std::pair<int, std::string>> files;
+  if (std::regex_search(name, m, separate)) {
+    const std::string stem = name.substr(0, static_cast<std::size_t>(m.position(0)));
+    const char kind = m[1].str()[0];
+    fs::path dir = fs::path(path).parent_path();
+    if (dir.empty()) dir = ".";
+    if (!fs::exists(path)) throw InputError(path, "no such file (expected a restart file of the simulation)");
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string f = e.path().filename().string();
+      std::smatch fm;
+      if (f.size() == stem.size() + 6 && f.compare(0, stem.size(), stem) == 0 && std::regex_search(f, fm, separate) &&
+          fm[1].str()[0] == kind)
+        files.emplace_back(std::stoi(fm[2].str()), (dir / f).string());
+    }
+    std::sort(files.begin(), files.end());
+  } else {
+    if (!fs::exists(path)) throw InputError(path, "no such file (expected the restart of the simulation, CASE.UNRST)");
+    files.emplace_back(-1, path);
+  }
+  for (const auto& [number, file] : files) {
+    auto ecl = eclio(file, [&] {
+      auto f = std::make_unique<Opm::EclIO::EclFile>(file);
+      check_complete(*f);
+      return f;
+    });
+    const auto names = ecl->arrayNames();
+    // Step starts: each SEQNUM (unified), or the whole file (non-unified).
+    std::vector<std::size_t> starts;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == "SEQNUM") starts.push_back(i);
+    if (number >= 0 && starts.empty()) starts.push_back(0);
+    if (starts.empty()) throw InputError(file, "no SEQNUM record: not a unified restart file (CASE.UNRST)");
+    const auto list = ecl->getList();
+    for (std::size_t s = 0; s < starts.size(); ++s) {
+      const std::size_t end = s + 1 < starts.size() ? starts[s + 1] : names.size();
+      int report = number, ih = -1, pr = -1;
+      for (std::size_t i = starts[s]; i < end && names[i] != "LGR"; ++i) {
+        if (names[i] == "SEQNUM") {
+          ecl->loadData(static_cast<int>(i));
+          const auto& v = eclio(file, [&]() -> const std::vector<int>& { return ecl->get<int>(static_cast<int>(i)); });
+          if (v.empty()) throw InputError(file, "empty SEQNUM record");
+          report = v[0];
+        } else if (names[i] == "INTEHEAD" && ih < 0) {
+          ih = static_cast<int>(i);
+        } else if (names[i] == "PRESSURE" && pr < 0) {
+          pr = static_cast<int>(i);
+        }
+      }
+      const std::string where = fmt::format("{}: report step {}", file, report);
+      if (ih < 0) throw InputError(where, "no INTEHEAD record");
+      const auto& h = eclio(file, [&]() -> const std::vector<int>& {
+        ecl->loadData(ih);
+        return ecl->get<int>(ih);
+      });
+      if (h.size() < 67) throw InputError(where, fmt::format("INTEHEAD has {} items (expected at least 67)", h.size()));
+      const int day = h[64], month = h[65], year = h[66];
+      const std::string date = fmt::format("{:04d}-{:02d}-{:02d}", year, month, day);
+      const auto t = year >= 1 && year <= 9999 && month >= 1 && month <= 12 && day >= 1 && day <= 31 ? parse_iso_date(date)
+                                                                                                     : std::nullopt;
+      if (!t) throw InputError(where, fmt::format("INTEHEAD date day {} month {} year {} is not a date (items 65-67)", day, month, year));
+      if (pr < 0) throw InputError(where, "no PRESSURE array (the restart must hold the pressure: RPTRST BASIC=2)");
+      const auto type = std::get<1>(list[static_cast<std::size_t>(pr)]);
+      if (type != Opm::EclIO::REAL && type != Opm::EclIO::DOUB) throw InputError(where, "PRESSURE is not a REAL or DOUB array");
+      pressure_unit_pa(h[2], where + ": INTEHEAD item 3");
+      if (!impl_->steps.empty()) {
+        const auto& last = impl_->steps.back();
+        if (!(*t > last.time))
+          throw InputError(where, fmt::format("date {} is not after the previous report step's {} (report steps less than a day "
+                                              "apart cannot be told apart)", date, last.date));
+      }
+      impl_->steps.push_back({report, date, *t, h[2]});
+      impl_->where.push_back({impl_->sources.size(), pr, std::get<2>(list[static_cast<std::size_t>(pr)]), h[8], h[9], h[10], h[11]});
+    }
+    ecl->clearData();
+    impl_->sources.push_back({file, std::move(ecl)});
+  }
+  if (impl_->steps.empty()) throw InputError(path, "no report step");
+}
+
+Restart::~Restart() = default;
+
+const std::string& Restart::path() const { return impl_->path; }
+const std::vector<RestartStep>& Restart::steps() const { return impl_->steps; }
+
+void Restart::check_grid(const Grid& grid) const {
+  for (std::size_t s = 0; s < impl_->steps.size(); ++s) {
+    const auto& w = impl_->where[s];
+    const std::string where = fmt::format("{}: report step {}", impl_->sources[w.source].file, impl_->steps[s].report);
+    if (w.nx != grid.dims[0] || w.ny != grid.dims[1] || w.nz != grid.dims[2])
+      throw InputError(where, fmt::format("grid {} x {} x {}, but {} is {} x {} x {}: the restart of another grid", w.nx, w.ny, w.nz,
+                                          grid.path, grid.dims[0], grid.dims[1], grid.dims[2]));
+    if (static_cast<std::size_t>(w.size) != grid.num_active())
+      throw InputError(where, fmt::format("PRESSURE has {} values, but {} has {} active cells: the restart of another grid", w.size,
+                                          grid.path, grid.num_active()));
+  }
+}
+
+std::vector<double> Restart::pressure(std::size_t s) {
+  if (s >= impl_->steps.size()) throw std::out_of_range("Restart::pressure: step index");
+  const auto& w = impl_->where[s];
+  auto& src = impl_->sources[w.source];
+  const std::string where = fmt::format("{}: report step {}", src.file, impl_->steps[s].report);
+  const double unit = pressure_unit_pa(impl_->steps[s].units, where);
+  std::vector<double> p;
+  eclio(src.file, [&] {
+    src.ecl->loadData(w.pressure_index);
+    const auto type = std::get<1>(src.ecl->getList()[static_cast<std::size_t>(w.pressure_index)]);
+    if (type == Opm::EclIO::REAL) {
+      const auto& v = src.ecl->get<float>(w.pressure_index);
+      p.assign(v.begin(), v.end());
+    } else {
+      p = src.ecl->get<double>(w.pressure_index);
+    }
+    src.ecl->clearData();
+  });
+  if (static_cast<std::int64_t>(p.size()) != w.size)
+    throw InputError(where, fmt::format("PRESSURE read {} values of {}", p.size(), w.size));
+  for (std::size_t a = 0; a < p.size(); ++a) {
+    if (!std::isfinite(p[a])) throw InputError(where, fmt::format("PRESSURE of active cell {} is not finite", a + 1));
+    p[a] *= unit;
+  }
+  return p;
+}
+
+}  // namespace ugs::eclipse
