@@ -158,5 +158,115 @@ TEST(CalibrateCli, BadInputs) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("the solver exited with code 3: diverged"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out"));
+  // Refused inputs leave no cache folder (issue 20); a failed solver run leaves its log in
+  // failed-<entry>/, never a temporary folder.
+  r = test::run(base + "--param material.pool_c.c_R=0:6 --cache-dir " + d + "refused.cache");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "refused.cache"));
+  std::size_t failed = 0;
+  for (const auto& e : fs::directory_iterator(dir / "out.cache")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.rfind(".tmp", 0), std::string::npos) << name;
+    failed += name.rfind("failed-eval-", 0) == 0;
+  }
+  EXPECT_GE(failed, 1u);
   fs::remove_all(dir);
+}
+
+namespace {
+
+// The columns of a table that must not depend on how a run was computed (cache or not): one
+// line per row, for exact comparison.
+std::string columns_text(const fs::path& csv, const std::vector<std::string>& cols) {
+  const CsvTable t = CsvTable::read(csv.string());
+  std::string s;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    for (const auto& c : cols) s += std::string(t.text(r, t.column(c))) + ",";
+    s += "\n";
+  }
+  return s;
+}
+
+std::string values_of(const fs::path& csv, const std::string& pid, const std::string& col) {
+  const CsvTable t = CsvTable::read(csv.string());
+  std::string s;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.text(r, t.column("pid")) == pid) s += std::string(t.text(r, t.column(col))) + " ";
+  return s;
+}
+
+}  // namespace
+
+// Issue 20: the cache key covers the PS positions (and the files the command names): a PS moved
+// under the same id is sampled again at its new place, exactly as with a fresh cache; a PS moved
+// off the surface is left out of the misfit as the warning says; no timing in the cache's index.
+TEST(CalibrateCli, CacheKeyCoversPointPositions) {
+  const Model m = write_model("calibrate-cache");
+  const std::string d = m.dir.string() + "/";
+  test::spit(m.dir / "case.toml", "crs = \"EPSG:32632\"\n[[material]]\nname = \"pool_c\"\nlaw = \"hypoplastic\"\nc_R = 3.0\n");
+  auto measured = [&](const std::string& name, double bx, double by) {
+    test::spit(m.dir / name, fmt::format("pid,x,y,20150601,20150901\nA,680300,4950300,0,1.5\nB,{},{},0,-2\n", bx, by));
+  };
+  measured("up1.csv", 680600, 4950500);
+  measured("up2.csv", 680850, 4950650);   // B moved, still on the model
+  measured("up3.csv", 682000, 4950400);   // B moved 1 km off the model
+  auto calibrate = [&](const std::string& up, const std::string& cache, const std::string& out) {
+    return test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --mesh " + d + "model.msh --measured " + d + up +
+                     " --param material.pool_c.c_R=2:6 --scan 2 --max-evals 2 --solver-command 'cp " + d +
+                     "run.h5 {out} && test -s {case}' --cache-dir " + d + cache + " -o " + d + out);
+  };
+  const std::vector<std::string> sim{"pid", "date", "east_mm", "north_mm", "up_mm"};
+  auto r = calibrate("up1.csv", "cache", "out1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = calibrate("up2.csv", "cache", "out2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto fresh = calibrate("up2.csv", "cache-fresh", "out2-fresh");
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  // The moved point's simulated series is that of its new place (the field's gradient makes it
+  // differ by about 0.5 mm), the same as with a fresh cache, byte for byte.
+  EXPECT_NE(values_of(m.dir / "out1" / "best_samples.csv", "B", "up_mm"),
+            values_of(m.dir / "out2" / "best_samples.csv", "B", "up_mm"));
+  EXPECT_EQ(values_of(m.dir / "out1" / "best_samples.csv", "A", "up_mm"),
+            values_of(m.dir / "out2" / "best_samples.csv", "A", "up_mm"));
+  EXPECT_EQ(columns_text(m.dir / "out2" / "best_samples.csv", sim), columns_text(m.dir / "out2-fresh" / "best_samples.csv", sim));
+  EXPECT_EQ(test::slurp(m.dir / "out2" / "misfit_points.csv"), test::slurp(m.dir / "out2-fresh" / "misfit_points.csv"));
+  EXPECT_EQ(columns_text(m.dir / "out2" / "profile.csv", {"entry", "rms_mm"}),
+            columns_text(m.dir / "out2-fresh" / "profile.csv", {"entry", "rms_mm"}));
+  EXPECT_NE(columns_text(m.dir / "out1" / "profile.csv", {"entry"}), columns_text(m.dir / "out2" / "profile.csv", {"entry"}));
+  // B off the model: warned about, and really left out (no misfit row, no simulated series).
+  r = calibrate("up3.csv", "cache", "out3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("PS 'B' lies 1000 m outside the top surface: left out of the misfit"), std::string::npos) << r.err;
+  EXPECT_EQ(values_of(m.dir / "out3" / "misfit_points.csv", "B", "rms_mm"), "");
+  EXPECT_EQ(values_of(m.dir / "out3" / "best_samples.csv", "B", "up_mm"), "");
+  EXPECT_EQ(values_of(m.dir / "out3" / "misfit_points.csv", "A", "rms_mm"),
+            values_of(m.dir / "out1" / "misfit_points.csv", "A", "rms_mm"));
+  // The results the command copies changed (same name, other bytes): computed again.
+  {
+    FieldSeriesWriter w(d + "run.h5", m.mesh);
+    const Field f2[] = {kF2.field(m.mesh)};
+    const Field f1[] = {kF1.field(m.mesh)};
+    w.add_step("2015-05-01", double(*parse_iso_date("2015-05-01")), f2);
+    w.add_step("2015-11-01", double(*parse_iso_date("2015-11-01")), f1);
+    w.commit();
+  }
+  r = calibrate("up1.csv", "cache", "out4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(columns_text(m.dir / "out4" / "profile.csv", {"cached"}), "0,\n0,\n");
+  EXPECT_NE(values_of(m.dir / "out1" / "best_samples.csv", "A", "up_mm"),
+            values_of(m.dir / "out4" / "best_samples.csv", "A", "up_mm"));
+  // No wall time in what a user compares: the index and the entries' JSON hold none.
+  const std::string index = test::slurp(m.dir / "cache" / "index.csv");
+  EXPECT_EQ(index.find("seconds"), std::string::npos) << index;
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(m.dir / "cache")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_EQ(name.rfind(".tmp", 0), std::string::npos) << name;
+    if (name.rfind("eval-", 0) != 0) continue;
+    ++entries;
+    EXPECT_EQ(test::slurp(e.path() / "entry.json").find("seconds"), std::string::npos);
+    EXPECT_TRUE(fs::exists(e.path() / "timing.txt"));
+  }
+  EXPECT_EQ(entries, 8u);  // 2 values x (up1, up2, up3, up1 with other results)
+  if (!HasFailure()) fs::remove_all(m.dir);
 }

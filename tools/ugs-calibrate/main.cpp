@@ -13,8 +13,11 @@
 //     --measured insar_vertical.csv --inside reservoir_traces.geojson --window 2003-01-01/2021-12-31
 //     --solver-command "ugs-solve {mesh} --case {case} --pressure dp_a.h5 --pressure dp_c.h5 --top {out} -o {dir}/solve.h5"
 //     -j 2 -o calibration
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <set>
 
 #include "ugs/cli/tool.hpp"
@@ -126,7 +129,8 @@ int main(int argc, char** argv) {
       params.push_back(std::move(p));
     }
     const std::string cache_dir = o.cache_dir.empty() ? output + ".cache" : o.cache_dir;
-    fs::create_directories(cache_dir);
+    // Both bounds must give a valid case: each copy is checked in the system's temporary folder
+    // (the cache is created only once every input is accepted).
     for (const auto& p : params) {
       const double now = tmpl.value(p.paths.front());
       if (now < p.lower || now > p.upper)
@@ -134,7 +138,17 @@ int main(int argc, char** argv) {
       for (double bound : {p.lower, p.upper}) {
         std::vector<std::pair<std::string, double>> v;
         for (const auto& path : p.paths) v.emplace_back(path, bound);
-        const std::string check = (fs::path(cache_dir) / fmt::format(".check-{}.toml", ::getpid())).string();
+        std::string check = (fs::temp_directory_path() / fmt::format("ugs-calibrate-check-{}-XXXXXX", ::getpid())).string();
+        const int fd = ::mkstemp(check.data());
+        if (fd < 0) throw ComputeError(fmt::format("cannot create a temporary file in {}", fs::temp_directory_path().string()));
+        ::close(fd);
+        struct Remove {
+          std::string path;
+          ~Remove() {
+            std::error_code ec;
+            fs::remove(path, ec);
+          }
+        } remove_check{check};
         {
           std::ofstream f(check);
           f << tmpl.render(v);
@@ -142,12 +156,10 @@ int main(int argc, char** argv) {
         try {
           (void)read_case_file(check);
         } catch (const InputError& e) {
-          fs::remove(check);
           std::string msg = e.what();
           if (msg.rfind(check, 0) == 0) msg = o.case_file + msg.substr(check.size());
           throw InputError("--param " + p.name, fmt::format("the case is not valid at {} = {}: {}", p.name, bound, msg));
         }
-        fs::remove(check);
       }
     }
     const MisfitWindow window = parse_window(o.window);
@@ -212,9 +224,16 @@ int main(int argc, char** argv) {
       if (l.sampled.empty()) throw InputError(o.measured, "no chosen PS point lies on the model's top surface (wrong CRS?)");
       located = l.sampled;
     }
+    // With --mesh a cached series must hold every point located on the surface (the key covers
+    // the positions, so it does; a damaged entry is computed again).
     std::vector<std::string> needed;
-    for (const auto& p : all_points) needed.push_back(p.id);
+    for (const auto& l : located) needed.push_back(l.point.id);
 
+    // 4. The outputs' folder (refused now if it cannot be made, before any solver run), then the
+    // cache: its key covers the points' exact positions, the field and the top group.
+    OutputFolder out(output);
+    std::string extra = fmt::format("field={} top={} located={}\n", o.field, o.top_group, o.mesh.empty() ? "per-result" : "mesh");
+    for (const auto& p : all_points) extra += fmt::format("point {} {:a} {:a}\n", p.id, p.x, p.y);
     EvaluatorSetup setup;
     setup.case_template = &tmpl;
     setup.params = params;
@@ -223,7 +242,7 @@ int main(int argc, char** argv) {
     setup.cache_dir = cache_dir;
     setup.jobs = o.jobs;
     setup.keep_results = o.keep_results;
-    setup.setup_extra = "field=" + o.field + " top=" + o.top_group;
+    setup.setup_extra = extra;
     setup.needed_ids = needed;
     setup.sample = [&](const std::string& h5) {
       std::vector<LocatedPoint> pts = located;
@@ -242,10 +261,14 @@ int main(int argc, char** argv) {
       // Points off the surface have no series: absent ids are left out of the misfit.
       return out;
     };
+    // The misfit uses the points sampled on the surface: with --mesh those located on it (the ones
+    // warned about as outside are left out, whatever a series holds), else those in the series.
+    std::set<std::string> on_surface;
+    for (const auto& l : located) on_surface.insert(l.point.id);
     auto located_for = [&](const SimulatedSeries& s, const PsData& d) {
       std::vector<LocatedPoint> pts;
       for (const auto& p : d.points)
-        if (s.has(p.id)) pts.push_back({p, {}});
+        if (s.has(p.id) && (!mesh_top || on_surface.count(p.id))) pts.push_back({p, {}});
       return pts;
     };
     setup.misfit = [&](const SimulatedSeries& s) {
@@ -263,7 +286,7 @@ int main(int argc, char** argv) {
                 e.cached ? " (cached)" : fmt::format(" ({:.1f} s)", e.seconds));
     };
 
-    // 4. Optimise.
+    // 5. Optimise.
     OptimizerOptions oo;
     oo.scan = o.scan;
     oo.xtol = o.xtol;
@@ -272,8 +295,7 @@ int main(int argc, char** argv) {
     if (!best.converged) cli::warning("the optimizer stopped before converging: {}", best.stop_reason);
     const Evaluation& be = ev.history()[best.best_index];
 
-    // 5. Outputs, all at once.
-    OutputFolder out(output);
+    // 6. Outputs, all at once.
     {
       std::vector<std::pair<std::string, double>> v;
       for (std::size_t i = 0; i < params.size(); ++i)
@@ -322,7 +344,7 @@ int main(int argc, char** argv) {
       const SimulatedSeries& s = ev.series_of(be);
       std::vector<LocatedPoint> pts;
       for (const auto& p : all_points)
-        if (s.has(p.id)) {
+        if (s.has(p.id) && (!mesh_top || on_surface.count(p.id))) {
           LocatedPoint lp{p, {}};
           for (const auto& l : located)
             if (l.point.id == p.id) lp = l;
@@ -341,7 +363,7 @@ int main(int argc, char** argv) {
     }
     out.commit();
 
-    // 6. The answer, on stdout.
+    // 7. The answer, on stdout.
     std::printf("best (%s, %s):\n", best.method.c_str(), best.stop_reason.c_str());
     for (std::size_t i = 0; i < params.size(); ++i)
       std::printf("  %s = %s   [%g, %g]\n", params[i].name.c_str(), fmt_value(best.best_x[i]).c_str(), params[i].lower,

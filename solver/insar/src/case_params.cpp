@@ -218,6 +218,25 @@ double CaseTemplate::value(const std::string& path) const {
   return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
 }
 
+std::vector<std::string> CaseTemplate::referenced_files() const {
+  std::istringstream in(text_);
+  const toml::value root = toml::parse(in, path_);
+  std::vector<const toml::value*> strings;
+  collect_strings(root, strings);
+  const fs::path dir = fs::absolute(fs::path(path_)).parent_path();
+  std::vector<std::string> files;
+  for (const toml::value* s : strings) {
+    const std::string& str = s->as_string().str;
+    if (str.empty()) continue;
+    const fs::path full = fs::path(str).is_absolute() ? fs::path(str) : dir / str;
+    std::error_code ec;
+    if (fs::is_regular_file(full, ec)) files.push_back(fs::weakly_canonical(full, ec).string());
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
 std::string CaseTemplate::render(const std::vector<std::pair<std::string, double>>& values) const {
   std::istringstream in(text_);
   const toml::value root = toml::parse(in, path_);

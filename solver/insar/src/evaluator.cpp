@@ -19,18 +19,13 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/io.hpp"
+#include "ugs/insar/content_hash.hpp"
 #include "ugs/insar/displacement.hpp"
 #include "ugs/insar/subprocess.hpp"
 
 namespace ugs::insar {
 
 namespace fs = std::filesystem;
-
-std::string fnv1a_hex(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return fmt::format("{:016x}", h);
-}
 
 // ---- SimulatedSeries ----------------------------------------------------------------------------
 
@@ -97,13 +92,20 @@ Samples SimulatedSeries::at_dates(const std::vector<LocatedPoint>& points, const
 
 namespace {
 
-std::string file_identity(const std::string& path) {
-  if (path.empty()) return "";
-  std::error_code ec;
-  const auto p = fs::weakly_canonical(path, ec);
-  const auto size = fs::file_size(path, ec);
-  const auto mtime = fs::last_write_time(path, ec).time_since_epoch().count();
-  return fmt::format("{} {} {}", p.string(), ec ? 0 : size, ec ? 0 : mtime);
+// The program `name` as the shell would find it in PATH ("" if not found).
+std::string find_in_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path || name.empty()) return "";
+  std::string_view rest = path;
+  while (true) {
+    const auto colon = rest.find(':');
+    const std::string dir(rest.substr(0, colon));
+    std::error_code ec;
+    const fs::path p = fs::path(dir.empty() ? "." : dir) / name;
+    if (fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0) return fs::absolute(p).lexically_normal().string();
+    if (colon == std::string_view::npos) return "";
+    rest.remove_prefix(colon + 1);
+  }
 }
 
 std::string substitute(const std::string& tmpl, const std::map<std::string, std::string>& values) {
@@ -160,6 +162,72 @@ void write_text(const fs::path& p, const std::string& s) {
 
 }  // namespace
 
+std::vector<std::string> files_named_in_command(const std::string& cmd) {
+  // Words as /bin/sh splits them (quotes removed, no expansion); operators end a simple command.
+  struct Word {
+    std::string text;
+    bool command_position;
+  };
+  std::vector<Word> words;
+  std::string cur;
+  bool have = false, at_command = true;
+  auto flush = [&] {
+    if (!have) return;
+    words.push_back({cur, at_command});
+    // VAR=value before the program keeps the command position.
+    const auto eq = cur.find('=');
+    const bool assignment = at_command && eq != std::string::npos && eq > 0 &&
+                            std::all_of(cur.begin(), cur.begin() + static_cast<std::ptrdiff_t>(eq),
+                                        [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    if (!assignment) at_command = false;
+    cur.clear();
+    have = false;
+  };
+  for (std::size_t i = 0; i < cmd.size(); ++i) {
+    const char c = cmd[i];
+    if (c == '\'' || c == '"') {
+      const auto close = cmd.find(c, i + 1);
+      const std::size_t end = close == std::string::npos ? cmd.size() : close;
+      cur += cmd.substr(i + 1, end - i - 1);
+      have = true;
+      i = end;
+    } else if (c == '\\' && i + 1 < cmd.size()) {
+      cur += cmd[++i];
+      have = true;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      flush();
+    } else if (c == ';' || c == '&' || c == '|' || c == '(' || c == ')' || c == '\n') {
+      flush();
+      at_command = true;
+    } else if (c == '<' || c == '>') {
+      flush();
+    } else {
+      cur += c;
+      have = true;
+    }
+  }
+  flush();
+  std::vector<std::string> files;
+  auto consider = [&](const std::string& w) {
+    if (w.empty() || w.find('{') != std::string::npos || w.find('$') != std::string::npos) return;
+    std::error_code ec;
+    if (fs::is_regular_file(w, ec)) files.push_back(fs::absolute(w).lexically_normal().string());
+  };
+  for (const auto& w : words) {
+    if (w.command_position && w.text.find('/') == std::string::npos && w.text.find('=') == std::string::npos) {
+      const std::string p = find_in_path(w.text);
+      if (!p.empty()) files.push_back(p);
+      continue;
+    }
+    consider(w.text);
+    const auto eq = w.text.find('=');
+    if (eq != std::string::npos) consider(w.text.substr(eq + 1));
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
 void check_command_template(const std::string& cmd, bool have_mesh) {
   if (cmd.find("{case}") == std::string::npos || cmd.find("{out}") == std::string::npos)
     throw InputError("--solver-command", "the command must contain {case} (the modified case file) and {out} (the results "
@@ -180,8 +248,20 @@ Evaluator::Evaluator(EvaluatorSetup setup) : setup_(std::move(setup)) {
   const std::string& cmd = setup_.solver_command;
   check_command_template(cmd, !setup_.mesh_path.empty());
   if (setup_.jobs < 1) setup_.jobs = 1;
-  setup_hash_ = fnv1a_hex(setup_.case_template->text() + "\n" + cmd + "\n" + file_identity(setup_.mesh_path) + "\n" +
-                          setup_.setup_extra);
+  // The key's inputs, by content: the key text holds the hashes in a fixed order, inputs.txt also
+  // the names (a moved or renamed file with the same bytes keeps its cache entries).
+  std::string key_text = "ugs-calibrate cache key 2\n";
+  auto add = [&](const std::string& role, const std::string& hash, const std::string& name) {
+    key_text += role + " " + hash + "\n";
+    inputs_ += role + " " + hash + (name.empty() ? "" : " " + name) + "\n";
+  };
+  add("case-text", sha256_hex(setup_.case_template->text()), setup_.case_template->path());
+  for (const auto& f : setup_.case_template->referenced_files()) add("case-file", sha256_file_hex(f), f);
+  add("command-template", sha256_hex(cmd), cmd);
+  for (const auto& f : files_named_in_command(cmd)) add("command-file", sha256_file_hex(f), f);
+  if (!setup_.mesh_path.empty()) add("mesh", sha256_file_hex(setup_.mesh_path), setup_.mesh_path);
+  add("extra", sha256_hex(setup_.setup_extra), "");
+  setup_hash_ = sha256_hex(key_text);
   std::error_code ec;
   fs::create_directories(setup_.cache_dir, ec);
   if (ec) throw InputError(setup_.cache_dir, "cannot create the cache folder: " + ec.message());
@@ -194,15 +274,11 @@ Evaluator::Evaluator(EvaluatorSetup setup) : setup_(std::move(setup)) {
   if (fs::exists(index)) {
     try {
       const CsvTable t = CsvTable::read(index.string());
-      const auto ce = t.column("entry");
+      const auto ce = t.column("entry"), cp = t.column("parameters"), cr = t.column("rms_mm");
       for (std::size_t r = 0; r < t.rows(); ++r) {
-        std::string row;
-        for (std::size_t c = 0; c < t.columns().size(); ++c) {
-          const std::string v(t.text(r, c));
-          if (c) row += ',';
-          row += csv_quote(v);
-        }
-        index_rows_[std::string(t.text(r, ce))] = row;
+        const std::string e(t.text(r, ce));
+        index_rows_[e] = fmt::format("{},{},{}", csv_quote(e), csv_quote(std::string(t.text(r, cp))),
+                                     csv_quote(std::string(t.text(r, cr))));
       }
     } catch (const InputError&) {
       // A damaged index is rebuilt from this run's entries.
@@ -217,7 +293,7 @@ std::string Evaluator::key(const std::vector<double>& x) const {
   return k;
 }
 
-std::string Evaluator::entry_name(const std::vector<double>& x) const { return "eval-" + fnv1a_hex(key(x)); }
+std::string Evaluator::entry_name(const std::vector<double>& x) const { return "eval-" + sha256_hex(key(x)).substr(0, 20); }
 
 const SimulatedSeries& Evaluator::series_of(const Evaluation& e) {
   std::lock_guard lock(mutex_);
@@ -252,12 +328,29 @@ Evaluation Evaluator::run_one(const std::vector<double>& x) {
   }
   static std::atomic<unsigned> counter{0};
   const fs::path tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-{}-{}", ev.entry, ::getpid(), counter++);
+  const fs::path failed = fs::path(setup_.cache_dir) / ("failed-" + ev.entry);
+  // Whatever happens below, no temporary folder stays: it becomes the entry, or failed-<entry>
+  // for a failed solver run (the error names it), or it is removed.
+  struct TmpGuard {
+    fs::path path;
+    ~TmpGuard() {
+      std::error_code ec;
+      if (!path.empty()) fs::remove_all(path, ec);
+    }
+  } guard{tmp};
+  auto keep_as_failed = [&] {
+    std::error_code ec;
+    fs::remove_all(failed, ec);
+    fs::rename(tmp, failed, ec);
+    return ec ? tmp.string() + " (removed)" : failed.string();
+  };
   fs::remove_all(tmp);
   fs::create_directories(tmp);
   std::vector<std::pair<std::string, double>> values;
   for (std::size_t i = 0; i < x.size(); ++i)
     for (const auto& p : setup_.params[i].paths) values.emplace_back(p, x[i]);
   write_text(tmp / "case.toml", setup_.case_template->render(values));
+  write_text(tmp / "inputs.txt", inputs_);
   const fs::path out = tmp / "result.h5";
   const std::string cmd = substitute(setup_.solver_command, {{"case", shell_quote((tmp / "case.toml").string())},
                                                              {"out", shell_quote(out.string())},
@@ -267,27 +360,33 @@ Evaluation Evaluator::run_one(const std::vector<double>& x) {
   const auto r = run_shell(cmd, tmp.string(), (tmp / "solver.log").string());
   std::string params;
   for (std::size_t i = 0; i < x.size(); ++i) params += (i ? ", " : "") + setup_.params[i].name + " = " + toml_float(x[i]);
-  if (r.exit_code != 0)
+  if (r.exit_code != 0) {
+    const std::string why = last_line((tmp / "solver.log").string());
     throw ComputeError(fmt::format("evaluation at {}: the solver exited with code {}: {} (log and case kept in {})", params,
-                                   r.exit_code, last_line((tmp / "solver.log").string()), tmp.string()));
+                                   r.exit_code, why, keep_as_failed()));
+  }
   if (!fs::exists(out))
-    throw ComputeError(fmt::format("evaluation at {}: the solver wrote no {} (the command must write {{out}}; log in {})", params,
-                                   out.string(), tmp.string()));
+    throw ComputeError(fmt::format("evaluation at {}: the solver wrote no result.h5 (the command must write {{out}}; log in {})",
+                                   params, keep_as_failed()));
   SimulatedSeries s;
   try {
     static std::mutex hdf5_mutex;  // HDF5 may be built without thread safety: one reader at a time
     std::lock_guard hdf5_lock(hdf5_mutex);
     s = setup_.sample(out.string());
   } catch (const InputError& e) {
-    throw ComputeError(fmt::format("evaluation at {}: cannot sample the solver's results: {} (kept in {})", params, e.what(),
-                                   tmp.string()));
+    const std::string what = e.what();
+    throw ComputeError(fmt::format("evaluation at {}: cannot sample the solver's results: {} (kept in {})", params, what,
+                                   keep_as_failed()));
   }
   s.write_csv((tmp / "series.csv").string());
+  // entry.json holds what the series depends on, nothing that changes from run to run: the wall
+  // time goes to timing.txt (and stderr).
   std::string json = "{\n  \"key\": " + json_string(k) + ",\n  \"parameters\": {";
   for (std::size_t i = 0; i < values.size(); ++i)
     json += fmt::format("{}\n    {}: {}", i ? "," : "", json_string(values[i].first), toml_float(values[i].second));
-  json += fmt::format("\n  }},\n  \"solver_seconds\": {:.3f},\n  \"command\": {}\n}}\n", r.seconds, json_string(cmd));
+  json += fmt::format("\n  }},\n  \"command\": {}\n}}\n", json_string(setup_.solver_command));
   write_text(tmp / "entry.json", json);
+  write_text(tmp / "timing.txt", fmt::format("solver_seconds {:.3f}\n", r.seconds));
   if (!setup_.keep_results) {
     fs::remove(out);
     fs::remove(fs::path(out).replace_extension(".xdmf"));
@@ -296,7 +395,11 @@ Evaluation Evaluator::run_one(const std::vector<double>& x) {
   std::error_code ec;
   fs::remove_all(entry, ec);
   fs::rename(tmp, entry, ec);
-  if (ec) fs::remove_all(tmp, ec);  // another process won the race: its entry is as good
+  if (!ec) {
+    guard.path.clear();
+    fs::remove_all(failed, ec);  // an earlier failure at these values is history
+  }
+  // else another process won the race: its entry is as good (the guard removes ours)
   ev.seconds = r.seconds;
   ev.misfit = setup_.misfit(s);
   std::lock_guard lock(mutex_);
@@ -358,9 +461,8 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
     std::string params;
     for (std::size_t k = 0; k < xs[i].size(); ++k)
       for (const auto& p : setup_.params[k].paths) params += (params.empty() ? "" : ";") + p + "=" + toml_float(xs[i][k]);
-    auto& row = index_rows_[out[i].entry];
-    if (!out[i].cached || row.empty())
-      row = fmt::format("{},{},{:.3f},{:.6f}", out[i].entry, csv_quote(params), out[i].seconds, out[i].misfit.rms_mm);
+    // The misfit of this run (it depends on the measured series, which are not in the key).
+    index_rows_[out[i].entry] = fmt::format("{},{},{:.6f}", out[i].entry, csv_quote(params), out[i].misfit.rms_mm);
     if (on_evaluation) on_evaluation(out[i]);
   }
   write_index();
@@ -369,8 +471,9 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
 
 void Evaluator::write_index() {
   OutputFile f((fs::path(setup_.cache_dir) / "index.csv").string());
-  f.write("# ugs-calibrate cache: one folder per evaluation (case.toml, series.csv, entry.json, solver.log)\n");
-  f.write("entry,parameters,solver_seconds,rms_mm\n");
+  f.write("# ugs-calibrate cache: one folder per evaluation (case.toml, series.csv, entry.json, inputs.txt, solver.log, "
+          "timing.txt); rms_mm of the latest run\n");
+  f.write("entry,parameters,rms_mm\n");
   for (const auto& [entry, row] : index_rows_) f.write(row + "\n");
   f.commit();
 }

@@ -40,6 +40,9 @@ public:
   // The case text with each path set to its value (shortest round-trip decimal) and relative file
   // names made absolute.
   std::string render(const std::vector<std::pair<std::string, double>>& values) const;
+  // The files the case names (strings that are existing files, relative to the case's folder or
+  // absolute): absolute, sorted, unique. Their content decides a run as much as the case text.
+  std::vector<std::string> referenced_files() const;
 
 private:
   std::string path_, text_;

@@ -5,11 +5,17 @@
 // replaced by shell-quoted paths; the shell's ${VAR} is left alone), samples the displacement of
 // its result at the PS points in-process, and keeps the sampled series (not the results file,
 // unless asked) in
-//   CACHE/eval-<hash>/{case.toml, series.csv, entry.json, key.txt, solver.log}
-// The hash is that of the setup (case text, command template, mesh file identity) and of the
-// values, so a repeated run, or an optimizer coming back to a point, costs nothing; CACHE/index.csv
-// lists every entry. Up to `jobs` evaluations run at once; entries appear by atomic rename, so
-// several processes can share a cache.
+//   CACHE/eval-<hash>/{case.toml, series.csv, entry.json, key.txt, inputs.txt, solver.log, timing.txt}
+// The key is a SHA-256 (content_hash.hpp) of everything that decides a cached series: the case
+// text and the content of every file it names, the command template and the content of every file
+// it names (pressure files, restart state, the solver program itself, also when found in PATH),
+// the mesh's content, `setup_extra` (the caller puts the PS points' ids and exact positions, the
+// field and the top group there), and the values. Same key, same series; any change of an input
+// gives another entry. A repeated run, or an optimizer coming back to a point, costs nothing;
+// CACHE/index.csv lists every entry (no timings: they are in each entry's timing.txt and on
+// stderr). Up to `jobs` evaluations run at once; entries appear by atomic rename, so several
+// processes can share a cache. A failed solver run leaves its folder as CACHE/failed-<entry>/ (the
+// error names it), never a temporary folder.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -45,7 +51,7 @@ struct EvaluatorSetup {
   std::string cache_dir;
   int jobs = 1;
   bool keep_results = false;
-  std::string setup_extra;                    // anything else that changes a result (field name, ...)
+  std::string setup_extra;                    // anything else that changes a result (points, field, ...)
   std::vector<std::string> needed_ids;        // the series of these points must be in a cached entry
   // Result file -> series at the PS points (in-process sampling).
   std::function<SimulatedSeries(const std::string& result_h5)> sample;
@@ -58,14 +64,15 @@ struct Evaluation {
   std::vector<double> x;         // parameter values (natural units)
   Misfit misfit;
   bool cached = false;
-  double seconds = 0;            // solver wall time (0 when cached)
+  double seconds = 0;            // solver wall time (0 when cached); for stderr and timing.txt only
   std::string phase;             // "scan", "brent", "bobyqa", ...
   std::string entry;             // cache entry folder
 };
 
 class Evaluator {
 public:
-  // InputError for a command template without {case} or {out} or with an unknown {placeholder}.
+  // InputError for a command template without {case} or {out} or with an unknown {placeholder},
+  // or for an input file that cannot be read. Hashes the inputs, then creates the cache folder.
   explicit Evaluator(EvaluatorSetup setup);
 
   // Evaluates each x (up to `jobs` at once), results in the order given; ComputeError naming the
@@ -78,6 +85,8 @@ public:
   std::string entry_name(const std::vector<double>& x) const;
   std::string key(const std::vector<double>& x) const;
   const SimulatedSeries& series_of(const Evaluation& e);  // from the cache entry
+  // What the key covers, one input a line (written to each entry's inputs.txt).
+  const std::string& inputs_description() const { return inputs_; }
 
 private:
   Evaluation run_one(const std::vector<double>& x);
@@ -85,6 +94,7 @@ private:
 
   EvaluatorSetup setup_;
   std::string setup_hash_;
+  std::string inputs_;
   std::vector<Evaluation> history_;
   std::map<std::string, SimulatedSeries> series_;   // entry -> series (for the best one and reports)
   std::map<std::string, std::string> index_rows_;   // entry -> CSV row
@@ -95,7 +105,9 @@ private:
 // {placeholder}, or using {mesh} without a mesh.
 void check_command_template(const std::string& command, bool have_mesh);
 
-// 64-bit FNV-1a as 16 hex digits.
-std::string fnv1a_hex(const std::string& text);
+// Files a shell command names: every word (or the value of --opt=VALUE) that is an existing regular
+// file, and the program of each simple command looked up in PATH; absolute, sorted, unique.
+// Words holding a {placeholder} are skipped (they are the evaluation's own files).
+std::vector<std::string> files_named_in_command(const std::string& command);
 
 }  // namespace ugs::insar
