@@ -3,6 +3,7 @@
 // exit code 2 and one line naming the file and what is wrong.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -158,6 +159,20 @@ TEST(CalibrateCli, BadInputs) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("the solver exited with code 3: diverged"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out"));
+  // TOML errors: one line naming the file and line, as the other tools' (issue 20).
+  test::spit(dir / "bad.toml", "crs = \"EPSG:32632\"\n[[material]]\nname = \"pool_c\"\nc_R = = 3.0\n");
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "bad.toml --measured " + d +
+                "up.csv --solver-command 'true {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "bad.toml:4: TOML syntax error")) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  test::spit(dir / "dup.toml", "crs = \"EPSG:32632\"\ncrs = \"EPSG:3035\"\n");
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "dup.toml --measured " + d +
+                "up.csv --solver-command 'true {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "dup.toml:")) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + " --measured " + d +
+                "up.csv --solver-command 'true {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "is a folder (expected a TOML case file)")) << r.err;
   // Refused inputs leave no cache folder (issue 20); a failed solver run leaves its log in
   // failed-<entry>/, never a temporary folder.
   r = test::run(base + "--param material.pool_c.c_R=0:6 --cache-dir " + d + "refused.cache");

@@ -14,6 +14,7 @@
 #include <toml.hpp>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/formats/toml_reader.hpp"
 
 namespace ugs::insar {
 
@@ -199,16 +200,15 @@ ParameterSpec parse_parameter(const std::string& text) {
 }
 
 CaseTemplate::CaseTemplate(const std::string& case_path) : path_(case_path) {
+  std::error_code ec;
+  if (fs::is_directory(case_path, ec)) throw InputError(case_path, "is a folder (expected a TOML case file)");
   std::ifstream f(case_path, std::ios::binary);
   if (!f) throw InputError(case_path, "cannot open the case file");
   std::stringstream ss;
   ss << f.rdbuf();
   text_ = ss.str();
-  try {
-    (void)toml::parse(case_path);
-  } catch (const toml::syntax_error& e) {
-    throw InputError(case_path, "not valid TOML: " + std::string(e.what()).substr(0, 200));
-  }
+  // The tools' one TOML reader: a syntax error is one line, "case.toml:LINE: TOML syntax error: ...".
+  (void)TomlTable::parse_file(case_path);
 }
 
 double CaseTemplate::value(const std::string& path) const {
