@@ -1,6 +1,7 @@
 #include "ugs/mechanics/pressure.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <unordered_map>
 
@@ -8,11 +9,18 @@
 
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
+#include "input_checks.hpp"
 
 namespace ugs::mech {
 
 struct PressureHistory::File {
   std::unique_ptr<FieldSeriesReader> reader;
+  // `dp` is a cell field (a reservoir simulator's, ugs-import-eclipse) rather than ugs-flow's node
+  // field: one value per file cell, taken by its element as it is.
+  bool cells = false;
+  std::size_t count = 0;  // values per step
+  // Nodal output of a cell field: each mesh node takes the mean of its elements' values (CSR).
+  std::vector<std::uint32_t> avg_node, avg_start, avg_row;
   std::vector<std::uint32_t> mesh_index;  // mesh node of each file node
   // Mesh nodes that are corners of this file's cells without being file nodes themselves: the twins
   // ugs-faultinsert made on a fault, which take the pressure of the file node they were split from.
@@ -27,9 +35,13 @@ struct PressureHistory::File {
     for (int k = 0; k < 2; ++k)
       if (cached[k] == s) return values[k];
     const int slot = cached[0] == -1 || (cached[1] != -1 && cached[0] < cached[1]) ? 0 : 1;
-    Field f = reader->node_field(static_cast<std::size_t>(s), "dp");
+    Field f = cells ? reader->cell_field(static_cast<std::size_t>(s), "dp") : reader->node_field(static_cast<std::size_t>(s), "dp");
     if (f.components != 1)
       throw InputError(reader->path(), fmt::format("field 'dp' has {} components, expected 1 (pressure change in Pa)", f.components));
+    if (f.values.size() != count)
+      throw InputError(reader->path(), fmt::format("field 'dp' has {} values, expected {} (one per file {})", f.values.size(), count,
+                                                   cells ? "cell" : "node"));
+    check_finite(reader->path(), fmt::format("field 'dp' at step {}", reader->steps()[s].date), f.values, 1, "a pressure change in Pa");
     values[slot] = std::move(f.values);
     cached[slot] = s;
     return values[slot];
@@ -48,7 +60,11 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
   for (const auto& p : paths) {
     auto f = std::make_unique<File>();
     f->reader = std::make_unique<FieldSeriesReader>(p);
+    if (f->reader->steps().empty()) throw InputError(p, "no steps");
+    const auto has_dp = [](const std::vector<std::string>& names) { return std::find(names.begin(), names.end(), "dp") != names.end(); };
+    f->cells = !has_dp(f->reader->node_field_names(0)) && has_dp(f->reader->cell_field_names(0));
     const auto tags = f->reader->node_tags();
+    f->count = f->cells ? f->reader->num_cells() : tags.size();
     f->mesh_index.resize(tags.size());
     std::vector<std::int32_t> file_node(mesh.num_nodes(), -1);
     std::size_t unknown = 0;
@@ -59,6 +75,8 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
         if (!unknown++) first_unknown = tags[i];
         continue;
       }
+      if (file_node[it->second] >= 0)
+        throw InputError(p, fmt::format("/mesh/node_tags: node tag {} appears twice (entries {} and {})", tags[i], file_node[it->second], i));
       f->mesh_index[i] = it->second;
       file_node[it->second] = static_cast<std::int32_t>(i);
     }
@@ -68,10 +86,17 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
     // The elements this pool's pressure acts on: its sub-mesh cells (tags kept by ugs-submesh), or
     // failing cells, every element whose four nodes the file covers.
     const int fi = static_cast<int>(files_.size());
+    // Where a cell field and a node field cover the same element, the cell field wins (a simulator's
+    // pressure in the reservoir, ugs-flow's in the aquifers around it), whatever the files' order.
     auto take = [&](std::uint32_t e, const std::array<std::int32_t, 4>& fn) {
-      if (cell_file_[e] >= 0 && cell_file_[e] != fi)
-        throw InputError(p, fmt::format("element {} is also under the pressure of {}: pool sub-meshes must not overlap",
-                                        model.tet_tags[e], files_[cell_file_[e]]->reader->path()));
+      if (cell_file_[e] >= 0 && cell_file_[e] != fi) {
+        const bool other_cells = files_[cell_file_[e]]->cells;
+        if (other_cells == f->cells)
+          throw InputError(p, fmt::format("element {} is also under the pressure of {}: two cell fields (or two node fields) "
+                                          "must not overlap; a cell field takes precedence over a node field only",
+                                          model.tet_tags[e], files_[cell_file_[e]]->reader->path()));
+        if (other_cells) return;
+      }
       cell_file_[e] = fi;
       cell_nodes_[e] = fn;
     };
@@ -81,6 +106,7 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
       // The file's own cells give each element's corners, so a mesh whose fault nodes were split
       // after the flow sub-mesh was cut (ugs-faultinsert) gets the pressure of the parent nodes.
       const auto xyz = f->reader->coordinates();
+      check_connectivity(p, "/mesh/tetrahedra", file_tets, 4, xyz.size());
       std::vector<char> is_twin(mesh.num_nodes(), 0);
       std::size_t missing = 0;
       std::uint64_t first_missing = 0;
@@ -105,11 +131,13 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
             f->twins.emplace_back(m, static_cast<std::uint32_t>(fn[k]));
           }
         }
-        take(e, fn);
+        take(e, f->cells ? std::array<std::int32_t, 4>{static_cast<std::int32_t>(c), -1, -1, -1} : fn);
       }
       if (missing)
         throw InputError(p, fmt::format("element tag {} is not a tetrahedron of the mesh ({} of {} cell tags unknown)",
                                         first_missing, missing, cell_tags.size()));
+    } else if (f->cells) {
+      throw InputError(p, "cell field 'dp' without the file's tetrahedra and cell tags (only tetrahedra can carry it)");
     } else {
       for (std::uint32_t e = 0; e < model.tets.size(); ++e) {
         const auto& t = model.tets[e];
@@ -118,8 +146,9 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
       }
     }
     const auto& st = f->reader->steps();
-    if (st.empty()) throw InputError(p, "no steps");
     for (std::size_t s = 0; s < st.size(); ++s) {
+      if (!std::isfinite(st[s].time))
+        throw InputError(p, fmt::format("step {} ({}): time {} is not a finite number of seconds", s, st[s].date, st[s].time));
       if (s > 0 && !(st[s].time > st[s - 1].time))
         throw InputError(p, fmt::format("step {} ({}) is not later than step {} ({})", s, st[s].date, s - 1, st[s - 1].date));
       f->times.push_back(st[s].time);
@@ -133,6 +162,26 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
   file_cells_.resize(files_.size());
   for (std::uint32_t e = 0; e < cell_file_.size(); ++e)
     if (cell_file_[e] >= 0) file_cells_[cell_file_[e]].push_back(e);
+  for (std::size_t fi = 0; fi < files_.size(); ++fi) {
+    File& f = *files_[fi];
+    if (!f.cells) continue;
+    std::vector<std::uint32_t> n_rows(num_nodes_ + 1, 0);
+    for (const std::uint32_t e : file_cells_[fi])
+      for (const std::uint32_t m : model.tets[e]) ++n_rows[m + 1];
+    for (std::size_t m = 0; m < num_nodes_; ++m)
+      if (n_rows[m + 1]) {
+        f.avg_node.push_back(static_cast<std::uint32_t>(m));
+        f.avg_start.push_back(0);
+      }
+    std::vector<std::int64_t> slot(num_nodes_, -1);
+    for (std::size_t k = 0; k < f.avg_node.size(); ++k) slot[f.avg_node[k]] = static_cast<std::int64_t>(k);
+    f.avg_start.assign(f.avg_node.size() + 1, 0);
+    for (std::size_t k = 0; k < f.avg_node.size(); ++k) f.avg_start[k + 1] = f.avg_start[k] + n_rows[f.avg_node[k] + 1];
+    f.avg_row.resize(f.avg_start.back());
+    std::vector<std::uint32_t> fill(f.avg_start.begin(), f.avg_start.end() - 1);
+    for (const std::uint32_t e : file_cells_[fi])
+      for (const std::uint32_t m : model.tets[e]) f.avg_row[fill[static_cast<std::size_t>(slot[m])]++] = static_cast<std::uint32_t>(cell_nodes_[e][0]);
+  }
 }
 
 PressureHistory::~PressureHistory() = default;
@@ -154,7 +203,7 @@ std::vector<double> PressureHistory::file_values(File& f, double time) {
   const auto& T = f.times;
   if (time < T.front()) {
     f.before_used = true;
-    return std::vector<double>(f.mesh_index.size(), 0.0);
+    return std::vector<double>(f.count, 0.0);
   }
   const long s1 = static_cast<long>(std::upper_bound(T.begin(), T.end(), time) - T.begin());  // first later step
   if (s1 == static_cast<long>(T.size())) {
@@ -184,6 +233,10 @@ std::vector<double> PressureHistory::forced_cell_dp(double time) {
   dp.reserve(forced_cells());
   for (std::size_t fi = 0; fi < files_.size(); ++fi) {
     const auto v = file_values(*files_[fi], time);
+    if (files_[fi]->cells) {
+      for (const std::uint32_t e : file_cells_[fi]) dp.push_back(v[cell_nodes_[e][0]]);
+      continue;
+    }
     for (const std::uint32_t e : file_cells_[fi]) {
       const auto& n = cell_nodes_[e];
       dp.push_back(0.25 * (v[n[0]] + v[n[1]] + v[n[2]] + v[n[3]]));
@@ -193,11 +246,27 @@ std::vector<double> PressureHistory::forced_cell_dp(double time) {
 }
 
 std::vector<double> PressureHistory::node_dp(double time) {
+  // Nodes of a cell field's elements take the mean of those elements (summed over cell fields);
+  // the node fields are summed over the other nodes.
   std::vector<double> dp(num_nodes_, 0.0);
+  std::vector<char> by_cells(num_nodes_, 0);
   for (auto& f : files_) {
+    if (!f->cells) continue;
     const auto v = file_values(*f, time);
-    for (std::size_t i = 0; i < v.size(); ++i) dp[f->mesh_index[i]] += v[i];
-    for (const auto& [m, i] : f->twins) dp[m] += v[i];
+    for (std::size_t k = 0; k < f->avg_node.size(); ++k) {
+      double sum = 0;
+      for (std::uint32_t r = f->avg_start[k]; r < f->avg_start[k + 1]; ++r) sum += v[f->avg_row[r]];
+      dp[f->avg_node[k]] += sum / static_cast<double>(f->avg_start[k + 1] - f->avg_start[k]);
+      by_cells[f->avg_node[k]] = 1;
+    }
+  }
+  for (auto& f : files_) {
+    if (f->cells) continue;
+    const auto v = file_values(*f, time);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!by_cells[f->mesh_index[i]]) dp[f->mesh_index[i]] += v[i];
+    for (const auto& [m, i] : f->twins)
+      if (!by_cells[m]) dp[m] += v[i];
   }
   return dp;
 }

@@ -9,6 +9,13 @@
 // pressure change. So two pools whose sub-meshes share an interface are not added twice there,
 // and the forcing of a layer has exactly the layer's thickness. For the nodal output `dp` the
 // files are summed per parent node.
+//
+// A file may instead hold `dp` as a cell field (a reservoir simulator's pressure, written by
+// ugs-import-eclipse on the tetrahedra inside its grid): each of its elements takes its value as it
+// is, and its nodes the mean of their elements' values in the nodal output. Where a cell field and
+// a node field cover the same element the cell field wins, whatever the order of the files (the
+// simulator inside the reservoir, ugs-flow's aquifer field around it); two cell fields, or two node
+// fields, on one element are refused.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -29,7 +36,8 @@ struct PressureStep {
 class PressureHistory {
 public:
   // Opens every file; InputError if one is not a field series, lacks `dp`, has node or cell tags
-  // that are not in the mesh, claims elements another file claims, or has dates out of order.
+  // that are not in the mesh, claims elements another file of its kind claims, or has dates out
+  // of order.
   PressureHistory(const std::vector<std::string>& paths, const Mesh& mesh, const Model& model);
   ~PressureHistory();
 
