@@ -40,6 +40,22 @@ const char* dataset_name(ElementType t) {
   }
 }
 
+// A number type HDF5 converts safely: an integer of 1, 2, 4 or 8 bytes using all its bits, or an
+// IEEE float of 4 or 8 bytes. A damaged type message (a 1024-bit integer) overruns HDF5's own
+// conversion buffers (found by fuzzing, tests/fuzz).
+bool plain_number_type(hid_t t) {
+  const std::size_t size = H5Tget_size(t);
+  switch (H5Tget_class(t)) {
+    case H5T_INTEGER:
+      return (size == 1 || size == 2 || size == 4 || size == 8) && H5Tget_precision(t) == 8 * size && H5Tget_offset(t) == 0;
+    case H5T_FLOAT:
+      for (hid_t ieee : {H5T_IEEE_F64LE, H5T_IEEE_F64BE, H5T_IEEE_F32LE, H5T_IEEE_F32BE})
+        if (H5Tequal(t, ieee) > 0) return true;
+      return false;
+    default: return false;
+  }
+}
+
 std::optional<ElementType> type_of_dataset(std::string_view name) {
   for (ElementType t : {ElementType::Triangle, ElementType::Tetrahedron, ElementType::Prism})
     if (name == dataset_name(t)) return t;
@@ -438,7 +454,9 @@ struct FieldSeriesReader::Impl {
     hsize_t count = 1;
     for (hsize_t k : d) count *= k;
     h5::Id type(H5Dget_type(ds.get()), H5Tclose);
-    const hsize_t bytes = count * (type.valid() ? H5Tget_size(type.get()) : 1);
+    if (!type.valid() || !plain_number_type(type.get()))
+      fail(fmt::format("{}: not stored as plain numbers (expected integers or IEEE floats of 1 to 8 bytes)", name));
+    const hsize_t bytes = count * H5Tget_size(type.get());
     if (bytes > kMaxExpansion * H5Dget_storage_size(ds.get()) + (1 << 20))
       fail(fmt::format("{} claims {} values but stores only {} bytes (damaged file?)", name, count,
                        H5Dget_storage_size(ds.get())));
@@ -453,7 +471,10 @@ struct FieldSeriesReader::Impl {
     h5::Id attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
     if (!attr.valid()) fail(fmt::format("{}: no attribute '{}'", where, name));
     h5::Id type(H5Aget_type(attr.get()), H5Tclose);
-    if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING) fail(fmt::format("{}: attribute '{}' is not text", where, name));
+    h5::Id space(H5Aget_space(attr.get()), H5Sclose);
+    if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING || !space.valid() ||
+        H5Sget_simple_extent_npoints(space.get()) != 1)
+      fail(fmt::format("{}: attribute '{}' is not a single text", where, name));
     h5::Id mem(H5Tcopy(H5T_C_S1), H5Tclose);
     if (H5Tis_variable_str(type.get()) > 0) {
       H5Tset_size(mem.get(), H5T_VARIABLE);
@@ -474,7 +495,11 @@ struct FieldSeriesReader::Impl {
   double double_attribute(hid_t loc, const std::string& where, const char* name) const {
     h5::Id attr(H5Aopen(loc, name, H5P_DEFAULT), H5Aclose);
     double v = 0;
-    if (!attr.valid() || H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v) < 0)
+    h5::Id type(attr.valid() ? H5Aget_type(attr.get()) : H5I_INVALID_HID, H5Tclose);
+    h5::Id space(attr.valid() ? H5Aget_space(attr.get()) : H5I_INVALID_HID, H5Sclose);
+    if (!type.valid() || !plain_number_type(type.get()) || !space.valid() || H5Sget_simple_extent_npoints(space.get()) != 1)
+      fail(fmt::format("{}: attribute '{}' is not a single number", where, name));
+    if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v) < 0)
       fail(fmt::format("{}: cannot read attribute '{}'", where, name));
     return v;
   }

@@ -1,0 +1,39 @@
+# The fuzz tree (cmake -DUGS_FUZZ=ON with clang; docs/fuzzing.md): only the libraries the libFuzzer
+# targets of tests/fuzz need, and the targets, all built with -fsanitize=fuzzer-no-link,address,undefined.
+# Included from the top-level CMakeLists.txt, which returns after it.
+if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+  message(FATAL_ERROR "UGS_FUZZ=ON needs clang (libFuzzer): -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14")
+endif()
+set(UGS_FUZZ_FLAGS -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+    -fno-omit-frame-pointer -g -O1)
+add_compile_options(${UGS_FUZZ_FLAGS})
+set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)  # Debug on purpose: assertions on
+add_link_options(-fsanitize=address,undefined)
+
+# ugs_formats and ugs_fields_serial as in the normal build (only what a target links is built).
+add_subdirectory(formats)
+
+# The readers of meshing/, solver/flow and solver/insar with exactly the sources they reach
+# (strata -> natural neighbours, surface stack, fault traces; ps_data -> crs).
+set(_m ${PROJECT_SOURCE_DIR}/meshing/src)
+add_library(ugs_fuzz_readers STATIC
+  ${_m}/strata.cpp ${_m}/natural_neighbour.cpp ${_m}/surface_stack.cpp ${_m}/plan.cpp
+  ${_m}/fault_traces.cpp ${_m}/fault_traces_ogr.cpp ${_m}/geodata.cpp ${_m}/plan_inputs.cpp
+  ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
+  ${PROJECT_SOURCE_DIR}/solver/insar/src/ps_data.cpp ${PROJECT_SOURCE_DIR}/solver/insar/src/crs.cpp)
+get_target_property(_ugs_gdal_includes GDAL::GDAL INTERFACE_INCLUDE_DIRECTORIES)
+target_include_directories(ugs_fuzz_readers SYSTEM PUBLIC ${_ugs_gdal_includes} ${GMSH_INCLUDE_DIR})
+target_include_directories(ugs_fuzz_readers PUBLIC
+  ${PROJECT_SOURCE_DIR}/meshing/include ${PROJECT_SOURCE_DIR}/solver/include
+  ${PROJECT_SOURCE_DIR}/solver/flow/include ${PROJECT_SOURCE_DIR}/solver/insar/include)
+target_link_libraries(ugs_fuzz_readers PUBLIC ugs_formats GDAL::GDAL PRIVATE CGAL::CGAL Eigen3::Eigen)
+
+set(_ugs_fuzz_targets "")
+foreach(name msh hdf5_fields csv ps case_file schedule strata ogr)
+  add_executable(fuzz_${name} ${CMAKE_CURRENT_LIST_DIR}/targets/fuzz_${name}.cpp)
+  target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
+  target_link_libraries(fuzz_${name} PRIVATE ugs_fuzz_readers ugs_formats)
+  list(APPEND _ugs_fuzz_targets fuzz_${name})
+endforeach()
+target_link_libraries(fuzz_hdf5_fields PRIVATE ugs_fields_serial)
+add_custom_target(ugs_fuzz_targets DEPENDS ${_ugs_fuzz_targets})
