@@ -1,8 +1,18 @@
 // The linear solves of the Newton iterations: Krylov method, preconditioner, its reuse (solver_impl.hpp,
 // docs/mechanics.md).
 #include "solver_impl.hpp"
+#include "ugs/mechanics/reuse_rule.hpp"
 
 namespace ugs::mech {
+
+bool keep_factorization(double baseline_ipd, double last_ipd, double last_decades, double refactor_iterations,
+                        double horizon) {
+  return (last_ipd - baseline_ipd) * last_decades * horizon <= refactor_iterations;
+}
+
+bool keep_multigrid(double baseline_ipd, double last_ipd) {
+  return last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0);
+}
 
 void MechanicsSolver::Impl::set_default_options(std::initializer_list<std::pair<const char*, const char*>> defaults) {
   for (const auto& [k, v] : defaults) {
@@ -128,25 +138,6 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve_once(double rtol
   return s;
 }
 
-MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::timed_solve(double rtol, bool guess, PetscInt maxit, bool fresh) {
-  using clock = std::chrono::steady_clock;
-  auto t0 = clock::now();
-  if (fresh) {
-    UGS_PETSC(KSPSetUp(ksp));
-    setup_seconds = std::chrono::duration<double>(clock::now() - t0).count();
-    t0 = clock::now();
-  }
-  const SolveResult s = solve_once(rtol, guess, maxit);
-  seconds_per_iteration = std::chrono::duration<double>(clock::now() - t0).count() / std::max(s.iterations, 1);
-  // Every rank must take the same keep-or-refactor decision (the setup is collective): the
-  // slowest rank's times decide.
-  double t[2] = {setup_seconds, seconds_per_iteration}, tmax[2];
-  MPI_Allreduce(t, tmax, 2, MPI_DOUBLE, MPI_MAX, lm.comm);
-  setup_seconds = tmax[0];
-  seconds_per_iteration = tmax[1];
-  return s;
-}
-
 MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, bool guess) {
   if (user_maxit_ < 0) {
     PetscReal a, b, c;
@@ -157,11 +148,12 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
   if (!pc_valid) rebuild_pc();
   if (mat_changed) {
     // A factorization is kept while the iterations it costs beyond a fresh one, over the next
-    // kFactorHorizon solves, take less time than refactoring (both measured: a refactor costs
-    // tens of solves); a multigrid hierarchy while it stays near its first rate and few
-    // elements changed branch (a setup costs a few cycles).
-    const double excess = (last_ipd - baseline_ipd) * last_decades * seconds_per_iteration * kFactorHorizon;
-    const bool rate_ok = factored() ? excess <= setup_seconds : last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0);
+    // kFactorHorizon solves, stay within what refactoring costs in solve iterations (measured once,
+    // reuse_rule.hpp); a multigrid hierarchy while it stays near its first rate
+    // and few elements changed branch (a setup costs a few cycles). Counts only, never measured
+    // time: the decision changes the numbers, and they must not depend on the machine's load.
+    const bool rate_ok = factored() ? keep_factorization(baseline_ipd, last_ipd, last_decades, kRefactorIterations, kFactorHorizon)
+                                    : keep_multigrid(baseline_ipd, last_ipd);
     const bool keep = rate_ok && (factored() || !branches_moved());
     const bool reuse = pc_valid && opt.reuse_preconditioner && keep;
     if (reuse) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
@@ -175,13 +167,15 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
   const PetscInt budget = fresh ? -1
                           : factored() ? static_cast<PetscInt>(std::ceil(2 * kFactorIpd * decades))
                                        : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
-  SolveResult s = timed_solve(rtol, guess, budget, fresh);
+  if (fresh) UGS_PETSC(KSPSetUp(ksp));
+  SolveResult s = solve_once(rtol, guess, budget);
   int its_total = s.iterations;
   if (!fresh && s.reason < 0) {
     rebuild_pc();
     fresh = true;
     why = "budget";
-    s = timed_solve(rtol, false, -1, fresh);
+    UGS_PETSC(KSPSetUp(ksp));
+    s = solve_once(rtol, false, -1);
     its_total += s.iterations;
   }
   s.setup = why;

@@ -101,7 +101,7 @@ struct MechanicsSolver::Impl {
   static constexpr double kTangentChange = 5e-3;
   static constexpr int kFullAssemblyEvery = 100;
   static constexpr double kFactorIpd = 5.0;      // iterations per decade a kept factorization gets
-  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off
+  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off (reuse_rule.hpp)
   int updates_since_full = 0;
   Mat A = nullptr, P = nullptr;
   PetscInt user_maxit_ = -1;
@@ -109,7 +109,6 @@ struct MechanicsSolver::Impl {
   KSP ksp = nullptr;
   bool pc_valid = false;
   double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
-  double setup_seconds = 0, seconds_per_iteration = 0;  // measured: last PC setup, last solve
   int pc_setups = 0;
   // Predictor: the span of the last step increments (orthonormal), Galerkin-projected.
   static constexpr int kRecycle = 24;
@@ -242,9 +241,6 @@ struct MechanicsSolver::Impl {
   void rebuild_pc();
 
   SolveResult solve_once(double rtol, bool guess, PetscInt maxit);
-
-  // solve_once, timing the preconditioner setup (when fresh) and the iterations apart.
-  SolveResult timed_solve(double rtol, bool guess, PetscInt maxit, bool fresh);
 
   SolveResult solve(double rtol, bool guess);
 
