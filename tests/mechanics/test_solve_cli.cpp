@@ -15,6 +15,7 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include "solve_support.hpp"
 
@@ -108,6 +109,44 @@ int run_paused(const std::vector<std::string>& args, const std::string& log, uns
     ++pauses;
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Damages one entry of a dataset of an HDF5 file in place (a corrupt or hand-edited input).
+// `dataset` may name the n-th step's group as "{step}": "/steps/{step}/node/dp".
+template <class T>
+void poke(const std::string& file, std::string dataset, std::size_t index, T value, hid_t mem_type, int step = 0) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << file;
+  if (const auto p = dataset.find("{step}"); p != std::string::npos) {
+    char name[256] = {};
+    ASSERT_GT(H5Lget_name_by_idx(f, "/steps", H5_INDEX_NAME, H5_ITER_INC, step, name, sizeof name, H5P_DEFAULT), 0);
+    dataset.replace(p, 6, name);
+  }
+  const hid_t ds = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+  ASSERT_GE(ds, 0) << dataset;
+  const hid_t space = H5Dget_space(ds);
+  std::vector<T> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  ASSERT_GE(H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  ASSERT_LT(index, v.size());
+  v[index] = value;
+  ASSERT_GE(H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  H5Sclose(space);
+  H5Dclose(ds);
+  H5Fclose(f);
+}
+
+// Sets the time attribute of the n-th step of a field series.
+void poke_time(const std::string& file, int step, double t) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << file;
+  char name[256] = {};
+  EXPECT_GT(H5Lget_name_by_idx(f, "/steps", H5_INDEX_NAME, H5_ITER_INC, step, name, sizeof name, H5P_DEFAULT), 0);
+  const hid_t g = H5Gopen2(f, (std::string("/steps/") + name).c_str(), H5P_DEFAULT);
+  const hid_t a = H5Aopen(g, "time", H5P_DEFAULT);
+  EXPECT_GE(H5Awrite(a, H5T_NATIVE_DOUBLE, &t), 0);
+  H5Aclose(a);
+  H5Gclose(g);
+  H5Fclose(f);
 }
 
 }  // namespace
@@ -413,6 +452,75 @@ TEST(SolveTool, PressureFromAnotherMeshIsBadInput) {
       EXPECT_NE(line.find("is not in the mesh"), std::string::npos) << line;
     }
   EXPECT_EQ(error_lines, 1u) << r2.err;
+}
+
+// Every count, index and value read from a pressure file or a restart state is checked before it
+// is used (issue 20): a pressure file whose /mesh/tetrahedra held node 4294967295 ended in PETSc's
+// segfault handler (MPI_ABORT, exit 59, 15 lines); now exit 2 and one line naming the file, the
+// dataset and the value.
+TEST(SolveTool, DamagedPressureAndStateFilesAreBadInput) {
+  Dir d("solve-damaged");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  const std::string good = test::slurp(d / "flow.h5");
+  // (What the damage is compared with is read from copies: the files poked are opened only there.)
+  fs::copy_file(d / "flow.h5", d / "flow_ref.h5");
+  std::size_t nodes = 0;
+  std::vector<std::uint64_t> tags;
+  std::vector<std::string> dates;
+  {
+    FieldSeriesReader ref(d / "flow_ref.h5");
+    nodes = ref.num_nodes();
+    tags = ref.node_tags();
+    for (const auto& st : ref.steps()) dates.push_back(st.date);
+  }
+  auto expect_bad = [&](const std::string& extra, const std::string& expect, const std::string& what) {
+    const auto r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / "out.h5" + extra);
+    EXPECT_EQ(r.exit_code, 2) << what << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << what << ": " << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << what << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << what << ": " << r.err;
+    EXPECT_FALSE(fs::exists(d / "out.h5")) << what;
+    EXPECT_FALSE(fs::exists(d / "out_top.h5")) << what;
+  };
+  // A corner of a tetrahedron out of range, the largest 32-bit index and one past the nodes.
+  poke<std::uint32_t>(d / "flow.h5", "/mesh/tetrahedra", 5, 4294967295u, H5T_NATIVE_UINT32);
+  expect_bad("", d / "flow.h5: /mesh/tetrahedra: cell 1 refers to node index 4294967295, out of range (the file has", "index");
+  test::spit(d / "flow.h5", good);
+  poke<std::uint32_t>(d / "flow.h5", "/mesh/tetrahedra", 0, static_cast<std::uint32_t>(nodes), H5T_NATIVE_UINT32);
+  expect_bad("", fmt::format("cell 0 refers to node index {}, out of range (the file has {} nodes)", nodes, nodes), "one past");
+  // A node tag twice: the node would take two pressures.
+  test::spit(d / "flow.h5", good);
+  poke<std::uint64_t>(d / "flow.h5", "/mesh/node_tags", 1, tags[0], H5T_NATIVE_UINT64);
+  expect_bad("", fmt::format("/mesh/node_tags: node tag {} appears twice (entries 0 and 1)", tags[0]), "tag twice");
+  // A pressure change that is not a number, at the first date and at a later one (found when the
+  // run reaches it: no results are left).
+  for (const int step : {0, 2}) {
+    test::spit(d / "flow.h5", good);
+    poke<double>(d / "flow.h5", "/steps/{step}/node/dp", 3, NAN, H5T_NATIVE_DOUBLE, step);
+    expect_bad("", fmt::format("flow.h5: field 'dp' at step {}: value nan at entry 3 is not a finite number", dates[step]),
+               "nan dp");
+  }
+  test::spit(d / "flow.h5", good);
+  poke_time(d / "flow.h5", 1, INFINITY);
+  expect_bad("", "flow.h5: step 1 (2001-01-01): time inf is not a finite number of seconds", "time");
+  // The restart state: values, stress magnitudes and cells.
+  test::spit(d / "flow.h5", good);
+  auto r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / "first.h5" + " --until 2001-01-01");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string state = test::slurp(d / "first_state.h5");
+  fs::copy_file(d / "first_state.h5", d / "state_ref.h5");
+  const auto cells = FieldSeriesReader(d / "state_ref.h5").cell_tags();
+  poke<double>(d / "first_state.h5", "/steps/{step}/cell/hypo", 4 * 2, NAN, H5T_NATIVE_DOUBLE);
+  expect_bad(" --restart " + d / "first_state.h5", "first_state.h5: cell field 'hypo': value nan at entry 2 is not a finite number",
+             "nan state");
+  test::spit(d / "first_state.h5", state);
+  poke<double>(d / "first_state.h5", "/steps/{step}/cell/hypo", 4 * 2, -26.0, H5T_NATIVE_DOUBLE);
+  expect_bad(" --restart " + d / "first_state.h5", "cell field 'hypo': sigma_max -26 MPa of cell 2 is negative", "sigma_max");
+  test::spit(d / "first_state.h5", state);
+  poke<std::uint64_t>(d / "first_state.h5", "/mesh/cell_tags", 0, cells[1], H5T_NATIVE_UINT64);
+  expect_bad(" --restart " + d / "first_state.h5", fmt::format("/mesh/cell_tags: cell 0 has tag {}, the mesh's tetrahedron 0 has tag {}",
+                                                                cells[1], cells[0]),
+             "cell tags");
 }
 
 TEST(SolveTool, HelpAndUsage) {
