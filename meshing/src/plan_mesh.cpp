@@ -42,6 +42,12 @@ std::vector<XY> clean_ring(const std::vector<XY>& r) {
   return out;
 }
 
+double signed_area(const std::vector<XY>& r) {
+  double a = 0;
+  for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) a += r[j][0] * r[i][1] - r[i][0] * r[j][1];
+  return 0.5 * a;
+}
+
 struct Segment {
   XY a, b;
 };
@@ -62,6 +68,7 @@ public:
     fragment();
     set_sizes();
     gmsh::model::mesh::generate(2);
+    check_region_areas();
     gmsh::model::mesh::renumberNodes();
     gmsh::model::mesh::renumberElements();
     Mesh m = extract();
@@ -79,12 +86,18 @@ private:
 
   int surface(const geo::Polygon& poly) {
     std::vector<int> loops;
+    bool outer_ccw = true;
     for (std::size_t k = 0; k <= poly.holes.size(); ++k) {
-      const auto ring = clean_ring(k == 0 ? poly.outer : poly.holes[k - 1]);
+      auto ring = clean_ring(k == 0 ? poly.outer : poly.holes[k - 1]);
       if (ring.size() < 3) {
         if (k == 0) return -1;
         continue;
       }
+      // Holes wound like their outer ring (gmsh turns hole loops itself): a hole wound against it (as
+      // GEOS returns a clipped polygon) became an area added, not removed, and the boolean fragment
+      // then made overlapping surfaces and lost the region.
+      if (k == 0) outer_ccw = signed_area(ring) > 0;
+      else if ((signed_area(ring) > 0) != outer_ccw) std::reverse(ring.begin(), ring.end());
       std::vector<int> pts, curves;
       for (const auto& p : ring) pts.push_back(point(p));
       for (std::size_t i = 0; i < pts.size(); ++i) curves.push_back(gmsh::model::occ::addLine(pts[i], pts[(i + 1) % pts.size()]));
@@ -139,21 +152,32 @@ private:
         for (const auto& p : became[d]) s.insert(p.second);
       return s;
     };
-    domain_ = pieces(domain_in_);
-    // Pieces of regions outside the domain (clipping leftovers) are dropped.
+    // Surfaces are classified by geometry, not by the fragment's map: OpenCASCADE's history can come
+    // back empty for a polygon with a hole that another polygon overlaps, which dropped its region
+    // (group, refinement) without a word. Each piece lies wholly inside or outside every input
+    // polygon, so one interior point of the piece decides.
+    const geo::PolygonSet domain_set(s_.domain);
+    std::vector<geo::PolygonSet> region_sets;
+    for (const auto& r : s_.regions) region_sets.emplace_back(r.polygons);
     DimTags all;
     gmsh::model::getEntities(all, 2);
     DimTags outside;
-    for (const auto& [d, t] : all)
-      if (!domain_.count(t)) outside.push_back({2, t});
+    std::map<int, XY> inner;
+    for (const auto& [d, t] : all) {
+      const XY p = interior_point(t);
+      inner[t] = p;
+      if (domain_set.contains(p)) domain_.insert(t);
+      else outside.push_back({2, t});
+    }
+    // Pieces of regions outside the domain (clipping leftovers) are dropped.
     if (!outside.empty()) {
       gmsh::model::occ::remove(outside, true);
       gmsh::model::occ::synchronize();
     }
-    for (const auto& r : region_in_) {
+    for (std::size_t r = 0; r < region_in_.size(); ++r) {
       std::set<int> s;
-      for (int t : pieces(r))
-        if (domain_.count(t)) s.insert(t);
+      for (int t : domain_)
+        if (region_sets[r].contains(inner[t])) s.insert(t);
       regions_.push_back(s);
     }
     // Curves on a domain surface's boundary or embedded in it; other line pieces lie outside.
@@ -181,6 +205,112 @@ private:
       gmsh::model::occ::remove(stray, true);
       gmsh::model::occ::synchronize();
     }
+  }
+
+  // A point strictly inside surface `t` (global coordinates): beside the middle of its longest
+  // boundary segment, on the side that the even-odd rule over its boundary says is inside.
+  XY interior_point(int t) {
+    DimTags b;
+    gmsh::model::getBoundary({{2, t}}, b, false, false, false);
+    std::vector<Segment> segs;
+    for (const auto& [d, c] : b) {
+      DimTags ends;
+      gmsh::model::getBoundary({{1, std::abs(c)}}, ends, false, false, false);
+      if (ends.size() != 2) continue;  // closed curves do not occur: every input is a polyline
+      std::vector<double> a, e;
+      gmsh::model::getValue(0, ends[0].second, {}, a);
+      gmsh::model::getValue(0, ends[1].second, {}, e);
+      segs.push_back({XY{a[0], a[1]}, XY{e[0], e[1]}});
+    }
+    auto inside = [&](const XY& p) {
+      bool in = false;
+      for (const auto& sg : segs)
+        if ((sg.a[1] > p[1]) != (sg.b[1] > p[1]) &&
+            p[0] < (sg.b[0] - sg.a[0]) * (p[1] - sg.a[1]) / (sg.b[1] - sg.a[1]) + sg.a[0])
+          in = !in;
+      return in;
+    };
+    std::vector<std::size_t> order(segs.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto len = [&](std::size_t i) { return std::hypot(segs[i].b[0] - segs[i].a[0], segs[i].b[1] - segs[i].a[1]); };
+    std::stable_sort(order.begin(), order.end(), [&](auto i, auto j) { return len(i) > len(j); });
+    for (std::size_t i : order) {
+      const auto& sg = segs[i];
+      const double L = len(i);
+      if (!(L > 0)) continue;
+      const XY m{0.5 * (sg.a[0] + sg.b[0]), 0.5 * (sg.a[1] + sg.b[1])};
+      const XY n{-(sg.b[1] - sg.a[1]) / L, (sg.b[0] - sg.a[0]) / L};
+      for (double delta : {1e-3 * L, 1e-5 * L})
+        for (double side : {1.0, -1.0}) {
+          const XY p{m[0] + side * delta * n[0], m[1] + side * delta * n[1]};
+          if (inside(p)) return {p[0] + x0_, p[1] + y0_};
+        }
+    }
+    throw ComputeError(fmt::format("gmsh: no interior point found for plan surface {}", t));
+  }
+
+  // Never silently: the triangles of each region must cover its polygons (clipped to the domain).
+  void check_region_areas() {
+    std::map<int, double> area;  // per surface
+    {
+      double want = 0, got = 0;
+      for (const auto& poly : s_.domain) want += polygon_area(poly);
+      for (int t : domain_) got += area[t] = surface_mesh_area(t);
+      if (std::abs(got - want) > 1e-6 * want)
+        throw InputError("", fmt::format("the domain covers {:.9g} m2, but its triangles {:.9g} m2: the plan geometry made "
+                                         "overlapping or missing pieces (self-touching rings or holes?); simplify the "
+                                         "polygons",
+                                         want, got));
+    }
+    for (std::size_t r = 0; r < s_.regions.size(); ++r) {
+      double want = 0, got = 0;
+      for (const auto& poly : s_.regions[r].polygons) want += polygon_area(poly);
+      if (!(want > 0)) continue;
+      for (int t : regions_[r]) {
+        if (!area.count(t)) area[t] = surface_mesh_area(t);
+        got += area[t];
+      }
+      if (std::abs(got - want) > 1e-6 * want)
+        throw InputError("", fmt::format("region '{}': its polygons cover {:.9g} m2 of the domain, but its triangles {:.9g} m2: "
+                                       "the plan geometry lost part of it (self-touching rings or holes?); simplify the "
+                                       "polygon",
+                                       s_.regions[r].name, want, got));
+    }
+  }
+
+  double surface_mesh_area(int t) {
+    if (node_at_.empty()) {  // every node (a surface's own list lacks the nodes of curves embedded in it)
+      std::vector<std::size_t> tags;
+      std::vector<double> param;
+      gmsh::model::mesh::getNodes(tags, node_xyz_, param, -1, -1, false, false);
+      for (std::size_t i = 0; i < tags.size(); ++i) node_at_[tags[i]] = i;
+    }
+    const auto& at = node_at_;
+    const auto& xyz = node_xyz_;
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> etags, enodes;
+    gmsh::model::mesh::getElements(types, etags, enodes, 2, t);
+    double a = 0;
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      if (types[k] != 2) continue;
+      for (std::size_t e = 0; e + 2 < enodes[k].size(); e += 3) {
+        const double* A = &xyz[3 * at.at(enodes[k][e])];
+        const double* B = &xyz[3 * at.at(enodes[k][e + 1])];
+        const double* C = &xyz[3 * at.at(enodes[k][e + 2])];
+        a += 0.5 * std::abs((B[0] - A[0]) * (C[1] - A[1]) - (B[1] - A[1]) * (C[0] - A[0]));
+      }
+    }
+    return a;
+  }
+
+  static double ring_area(const std::vector<XY>& r) { return std::abs(signed_area(r)); }
+  static double polygon_area(const geo::Polygon& p) {
+    const auto outer = clean_ring(p.outer);
+    if (outer.size() < 3) return 0;
+    double a = ring_area(outer);
+    for (const auto& h : p.holes)
+      if (const auto r = clean_ring(h); r.size() >= 3) a -= ring_area(r);
+    return a;
   }
 
   std::vector<double> as_doubles(const std::set<int>& s) { return std::vector<double>(s.begin(), s.end()); }
@@ -414,6 +544,8 @@ private:
 
   const PlanSpec& s_;
   double x0_ = 0, y0_ = 0, min_size_ = 0;
+  std::unordered_map<std::size_t, std::size_t> node_at_;
+  std::vector<double> node_xyz_;
   DimTags domain_in_;
   std::vector<DimTags> region_in_, line_in_;
   std::set<int> domain_;

@@ -185,3 +185,60 @@ TEST_F(Mesh2dCli, DirectoryOrUnreadableVectorFile) {
   expect_bad(box + "--fault " + p("nope.geojson").string(), p("nope.geojson").string() + ": cannot open: No such file or directory");
   expect_bad(box + "--fault " + p("text.geojson").string(), p("text.geojson").string() + ": cannot open as a vector file: ");
 }
+
+namespace {
+// Area of the triangles of a 2D physical group.
+double group_area(const Mesh& m, const std::string& name) {
+  const PhysicalGroup* g = m.find_physical(2, name);
+  if (!g) return 0;
+  double a = 0;
+  for (const auto& b : m.blocks) {
+    if (b.type != ElementType::Triangle) continue;
+    const Entity* e = m.find_entity(b.entity_dim, b.entity_tag);
+    if (!e || std::find(e->physicals.begin(), e->physicals.end(), g->tag) == e->physicals.end()) continue;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const auto &A = m.nodes[b.element(i)[0]], &B = m.nodes[b.element(i)[1]], &C = m.nodes[b.element(i)[2]];
+      a += 0.5 * std::abs((B[0] - A[0]) * (C[1] - A[1]) - (B[1] - A[1]) * (C[0] - A[0]));
+    }
+  }
+  return a;
+}
+}  // namespace
+
+// Issue 20: a refinement polygon with a hole, clipped by the domain (GEOS winds its hole against
+// its outer ring) and overlapped by another polygon, lost its region group and refinement without a
+// word (OpenCASCADE took the hole as area added). Its triangles now cover exactly its area, and the
+// size inside is the refinement's.
+TEST_F(Mesh2dCli, RefinementWithHoleOverlappedAndClippedKeepsItsRegion) {
+  test::spit(p("ring.geojson"), R"({"type": "FeatureCollection",
+"crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},
+"features": [
+{"type": "Feature", "properties": {"name": "ring", "size_m": 150}, "geometry": {"type": "Polygon", "coordinates": [
+  [[679000, 4951000], [685000, 4951000], [685000, 4953000], [679000, 4953000], [679000, 4951000]],
+  [[682000, 4951500], [684000, 4951500], [684000, 4952500], [682000, 4952500], [682000, 4951500]]]}},
+{"type": "Feature", "properties": {"name": "over", "size_m": 300}, "geometry": {"type": "Polygon", "coordinates": [
+  [[680500, 4950500], [682500, 4950500], [682500, 4952000], [680500, 4952000], [680500, 4950500]]]}}
+]})");
+  const auto out = p("ring.msh");
+  const auto r = test::run(tool() + " -q --box 680000/686000/4950000/4954000 --hmax 800 --refine " + p("ring.geojson").string() +
+                           " -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh m = read_msh(out.string());
+  // 5 km x 2 km inside the domain, less the 2 km x 1 km hole.
+  EXPECT_NEAR(group_area(m, "region:ring"), 8.0e6, 1.0);
+  EXPECT_NEAR(group_area(m, "region:over"), 3.0e6, 1.0);
+  EXPECT_NEAR(group_area(m, "region:domain"), 24.0e6, 1.0);
+  // The refinement is applied: edges inside the ring are near 150 m, not the 800 m far field.
+  double longest = 0;
+  for (const auto& b : m.blocks) {
+    if (b.type != ElementType::Triangle) continue;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const auto &A = m.nodes[b.element(i)[0]], &B = m.nodes[b.element(i)[1]], &C = m.nodes[b.element(i)[2]];
+      const double cx = (A[0] + B[0] + C[0]) / 3, cy = (A[1] + B[1] + C[1]) / 3;
+      const bool in_ring = cx > 680100 && cx < 684900 && cy > 4951100 && cy < 4952900 &&
+                           !(cx > 681900 && cx < 684100 && cy > 4951400 && cy < 4952600);
+      if (in_ring) longest = std::max({longest, std::hypot(B[0] - A[0], B[1] - A[1]), std::hypot(C[0] - B[0], C[1] - B[1])});
+    }
+  }
+  EXPECT_LT(longest, 300.0);
+}
