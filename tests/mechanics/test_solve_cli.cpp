@@ -523,6 +523,30 @@ TEST(SolveTool, DamagedPressureAndStateFilesAreBadInput) {
              "cell tags");
 }
 
+// Warnings about the inputs come after every input was checked (issue 20: "[[fault]] entries are
+// ignored by the continuous model" was printed before every error, so a bad input gave two lines).
+TEST(SolveTool, WarningsOnlyOnceTheInputsAreChecked) {
+  Dir d("solve-warn");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  ASSERT_EQ(test::run(test::make_case() + " small " + (d.path / "other").string()).exit_code, 0);
+  test::spit(d / "fault.toml", test::slurp(d / "case.toml") + "\n[[fault]]\nname = \"F1\"\n");
+  const std::string warning = "fault.toml: [[fault]] entries are ignored by the continuous model";
+  // Bad input: the error line only.
+  for (const std::string& extra : {" --pressure " + d / "other/flow_pool_c.h5", " --pressure " + d / "flow.h5" + " --restart " + d / "nothing.h5"}) {
+    const auto r = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "fault.toml" + extra + " -o " + d / "out.h5");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.find("[[fault]]"), std::string::npos) << r.err;
+  }
+  // Good input: the warning, once.
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d, "fault.toml") + " -o " + d / "out.h5");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const auto first = r.err.find(warning);
+  EXPECT_NE(first, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, first + 1), std::string::npos) << r.err;
+}
+
 TEST(SolveTool, HelpAndUsage) {
   auto r = test::run(test::solve_cmd() + " --help");
   EXPECT_EQ(r.exit_code, 0);

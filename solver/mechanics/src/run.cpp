@@ -89,6 +89,10 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
   auto log = [&](int level, const std::string& s) {
     if (rank == 0 && o.log) o.log(level, s);
   };
+  // Warnings and notes about the inputs wait until every input has been checked and the outputs
+  // are open: a run that stops on bad input prints its one error line and nothing else.
+  std::vector<std::pair<int, std::string>> deferred;
+  auto log_later = [&](int level, const std::string& s) { deferred.emplace_back(level, s); };
   RunSummary sum;
   const std::string stem = output_stem(o.output);
   const std::string top_path = o.top.empty() ? stem + "_top.h5" : o.top;
@@ -123,7 +127,7 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
     log(1, fmt::format("mesh: {} nodes, {} tetrahedra", R.mesh.num_nodes(), R.mesh.count(ElementType::Tetrahedron)));
     R.model = build_model(R.mesh, R.cs);
     if (!R.cs.faults.empty())
-      log(-1, fmt::format("{}: [[fault]] entries are ignored by the continuous model", R.cs.path));
+      log_later(-1, fmt::format("{}: [[fault]] entries are ignored by the continuous model", R.cs.path));
     R.history = std::make_unique<PressureHistory>(o.pressure, R.mesh, R.model);
     log(1, fmt::format("pressure: {} file(s), {} dates, {} of {} elements under a pressure change", o.pressure.size(),
                        R.history->steps().size(), R.history->forced_cells(), R.model.tets.size()));
@@ -137,10 +141,10 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
     set.max_substeps = R.cs.max_substeps;
     set.reuse = R.cs.reuse_preconditioner ? 1 : 0;
     set.checkpoint_every = o.checkpoint_every >= 0 ? o.checkpoint_every : R.cs.checkpoint_every;
-    if (R.model.top_nodes.empty()) log(-1, "the mesh has no bnd:top group: no top-surface table is written");
+    if (R.model.top_nodes.empty()) log_later(-1, "the mesh has no bnd:top group: no top-surface table is written");
     if (!o.restart.empty()) {
       R.restart = read_state(o.restart, R.mesh, R.restart_date, R.restart_time);
-      log(0, fmt::format("restarting from {} ({})", o.restart, R.restart_date));
+      log_later(0, fmt::format("restarting from {} ({})", o.restart, R.restart_date));
     }
   });
   MPI_Bcast(&faulted, 1, MPI_INT, 0, comm);
@@ -229,6 +233,7 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
     }
   });
   sum.seconds_setup = since(t0);
+  for (const auto& [level, text] : deferred) log(level, text);
   if (nsteps == 0) log(-1, "no steps after the restart date: nothing to solve");
 
   // 4. March over the steps.
