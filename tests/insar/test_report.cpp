@@ -12,6 +12,7 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include "h5_poke.hpp"
 #include "run_tool.hpp"
 #include "solve_box.hpp"
 #include "twin_data.hpp"
@@ -284,4 +285,48 @@ TEST(Report, BadInputsExitTwoWithOneLine) {
   EXPECT_FALSE(fs::exists(s.dir / "x"));  // nothing left behind
   for (const auto& e : fs::directory_iterator(s.dir)) EXPECT_EQ(e.path().filename().string().find(".x.tmp"), std::string::npos);
   if (!std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
+}
+
+// Issue 20: node indices out of range in the results' tetrahedra (read with --mesh for the stress
+// pictures) or in the fault results' triangles, and non-finite coordinates, are refused with one
+// line (they were read out of bounds: SIGSEGV, the temporary folder left behind); a plots.py that
+// fails leaves no temporary folder either.
+TEST(Report, OutOfRangeIndicesAndFailingPlotsLeaveNothing) {
+  const Synthetic s = make_synthetic("report-index");
+  const std::string d = s.dir.string() + "/";
+  auto no_leftovers = [&] {
+    std::string left;
+    for (const auto& e : fs::directory_iterator(s.dir))
+      if (e.path().filename().string().rfind(".x.tmp", 0) == 0 || e.path().filename() == "x") left += e.path().string() + " ";
+    return left;
+  };
+  auto one_line = [](const test::RunResult& r, int code, const std::string& needle) {
+    return r.exit_code == code && r.err.rfind("ugs-report: error: ", 0) == 0 && r.err.find('\n') == r.err.size() - 1 &&
+           r.err.find(needle) != std::string::npos;
+  };
+  const std::string base = test::tool("ugs-report") + " --mesh " + d + "model.msh --case " + d + "case.toml";
+  fs::copy_file(s.dir / "solve.h5", s.dir / "bad_tet.h5");
+  test::h5_poke<std::uint32_t>(d + "bad_tet.h5", "/mesh/tetrahedra", 5 * 4 + 1, 4294967295u);
+  auto r = test::run(base + " --results " + d + "bad_tet.h5 -o " + d + "x");
+  EXPECT_TRUE(one_line(r, 2, "bad_tet.h5: /mesh/tetrahedra: cell 5 has node index 4294967295 (expected below the")) << r.err;
+  EXPECT_EQ(no_leftovers(), "");
+  // The same file without --mesh (top surface from the results' own cells): the same message.
+  r = test::run(test::tool("ugs-report") + " --results " + d + "bad_tet.h5 -o " + d + "x");
+  EXPECT_TRUE(one_line(r, 2, "bad_tet.h5: /mesh/tetrahedra: cell 5 has node index 4294967295")) << r.err;
+  fs::copy_file(s.dir / "faults.h5", s.dir / "bad_faults.h5");
+  test::h5_poke<std::uint32_t>(d + "bad_faults.h5", "/mesh/triangles", 2 * 3, 4294967295u);
+  r = test::run(base + " --results " + d + "solve.h5 --faults " + d + "bad_faults.h5 -o " + d + "x");
+  EXPECT_TRUE(one_line(r, 2, "bad_faults.h5: /mesh/triangles: cell 2 has node index 4294967295")) << r.err;
+  EXPECT_EQ(no_leftovers(), "");
+  fs::copy_file(s.dir / "solve.h5", s.dir / "nan_xyz.h5");
+  test::h5_poke<double>(d + "nan_xyz.h5", "/mesh/coordinates", 3 * 3 + 1, std::nan(""));
+  r = test::run(base + " --results " + d + "nan_xyz.h5 -o " + d + "x");
+  EXPECT_TRUE(one_line(r, 2, "nan_xyz.h5: /mesh/coordinates: node 3 has y = nan (expected finite coordinates)")) << r.err;
+  EXPECT_EQ(no_leftovers(), "");
+  // plots.py raising an exception: exit 1 with its last line, nothing left.
+  test::spit(s.dir / "broken_plots.py", "raise FileNotFoundError('work/missing.csv')\n");
+  r = test::run("UGS_REPORT_PLOTS=" + d + "broken_plots.py " + base + " --results " + d + "solve.h5 -o " + d + "x");
+  EXPECT_TRUE(one_line(r, 1, "plots.py failed (exit code 1): FileNotFoundError: work/missing.csv")) << r.err;
+  EXPECT_EQ(no_leftovers(), "");
+  if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
 }

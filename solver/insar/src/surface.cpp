@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/insar/results_mesh.hpp"
 
 namespace ugs::insar {
 
@@ -118,24 +119,18 @@ TopSurface upward_boundary(std::span<const Point3> x, std::span<const std::uint6
 }
 
 TopSurface surface_from_results(const FieldSeriesReader& r) {
-  const auto x = r.coordinates();
+  const auto x = checked_coordinates(r);
   const auto tags = r.node_tags();
-  const auto tri = r.cells(ElementType::Triangle);
+  const auto tri = checked_cells(r, ElementType::Triangle);
   if (!tri.empty()) {
     std::vector<std::array<std::uint32_t, 3>> tris(tri.size() / 3);
     for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = {tri[3 * i], tri[3 * i + 1], tri[3 * i + 2]};
-    for (const auto& t : tris)
-      for (auto n : t)
-        if (n >= x.size()) throw InputError(r.path(), fmt::format("triangle refers to node index {} of {}", n, x.size()));
     return compact(x, tags, tris, r.path() + ": triangles");
   }
-  const auto tet = r.cells(ElementType::Tetrahedron);
+  const auto tet = checked_cells(r, ElementType::Tetrahedron);
   if (tet.empty()) throw InputError(r.path(), "has neither triangles nor tetrahedra: give --mesh for the top surface");
   std::vector<std::array<std::uint32_t, 4>> tets(tet.size() / 4);
   for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = {tet[4 * i], tet[4 * i + 1], tet[4 * i + 2], tet[4 * i + 3]};
-  for (const auto& t : tets)
-    for (auto n : t)
-      if (n >= x.size()) throw InputError(r.path(), fmt::format("tetrahedron refers to node index {} of {}", n, x.size()));
   TopSurface s = upward_boundary(x, tags, tets);
   s.source = r.path() + ": upward boundary faces";
   return s;
