@@ -6,7 +6,7 @@ JOBS      ?= $(shell nproc)
 CTEST_ARGS ?= -LE bench-long
 PREFIX    ?= /usr/local
 
-.PHONY: all deps build test test-asan demo bench install clean
+.PHONY: all deps build test test-asan fuzz demo bench install clean
 
 all: build
 
@@ -26,6 +26,11 @@ test-asan: deps
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS) -LE "bench-long|no-asan"
+
+# The libFuzzer targets, FUZZ_SECONDS each, in their own clang tree (docs/fuzzing.md: the release run).
+FUZZ_SECONDS ?= 600
+fuzz: deps
+	/usr/bin/python3 tests/fuzz/run_fuzz.py --source $(CURDIR) --build $(CURDIR)/build-fuzz --seconds $(FUZZ_SECONDS) --jobs $(JOBS)
 
 # The faulted run goes alongside the continuous one and the calibration (make -j).
 demo: build
