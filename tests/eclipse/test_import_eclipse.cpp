@@ -9,11 +9,13 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include <opm/io/eclipse/EclOutput.hpp>
 #include <opm/io/eclipse/ERst.hpp>
 
 #include "run_tool.hpp"
+#include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/box_mesh.hpp"
@@ -78,6 +80,8 @@ Where locate_in_deck(const Point3& p) {
   return w;
 }
 
+double when_s(const char* date) { return static_cast<double>(*parse_iso_date(date)); }
+
 int active_index(int i, int j, int k) {
   const int g = i + NX * (j + NY * k);
   const int gi = INACTIVE_I + NX * (INACTIVE_J + NY * INACTIVE_K);
@@ -90,6 +94,7 @@ Mesh deck_mesh() {
   spec.x = linspace(-55, 865, 23);  // no tetrahedron centroid exactly on the grid's outer faces
   spec.y = linspace(-55, 665, 18);
   spec.z = linspace(-1150, -990, 16);
+  spec.material = [](const Point3& c) { return c[2] > -1030 ? std::string("cap") : std::string("reservoir"); };
   Mesh m = make_box_mesh(spec);
   for (auto& n : m.nodes) n = to_map(n[0], n[1], -n[2]);
   return m;
@@ -346,4 +351,92 @@ TEST_F(ImportEclipse, BadInputExitsTwoWithOneLineAndNoOutput) {
   expect_bad(path("TINY.EGRID") + " --restart " + path("UNITS.UNRST"),
              "UNITS.UNRST: report step 0: INTEHEAD item 3: unit system 7 in INTEHEAD item 3 (expected 1 METRIC, 2 FIELD, 3 LAB or 4 PVT-M)");
   expect_bad(path("TINY.EGRID") + " --offset 1,2", "--offset");
+}
+
+TEST_F(ImportEclipse, CaseKeepsThePoolMaterialsOnly) {
+  test::spit(*dir_ / "s.csv", "date,p_MPa\n2020-01-01,10\n");
+  test::spit(*dir_ / "case.toml",
+             "[[material]]\nname = \"cap\"\nnu = 0.3\n[[material]]\nname = \"reservoir\"\nnu = 0.3\n"
+             "[[pool]]\nname = \"P\"\nmaterials = [\"reservoir\"]\nschedule = \"s.csv\"\ncolumn = \"p_MPa\"\n");
+  const auto r = import(path("TINY.EGRID") + " --mesh " + path("mesh.msh") + " --case " + path("case.toml") + " -o " + path("case.h5"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh mesh = read_msh(path("mesh.msh"));
+  std::size_t cap = 0;
+  std::map<std::uint64_t, double> z;
+  for (const Tet& t : tets_of(mesh)) {
+    z[t.tag] = t.centroid[2];
+    cap += t.centroid[2] > -1030;
+  }
+  EXPECT_NE(r.err.find(fmt::format("; {} not of the case's pool materials", cap)), std::string::npos) << r.err;
+  FieldSeriesReader in(path("case.h5"));
+  EXPECT_GT(in.cell_tags().size(), 1000u);
+  for (const auto tag : in.cell_tags()) EXPECT_LT(z.at(tag), -1030) << tag;
+}
+
+TEST_F(ImportEclipse, ExportsStrainAndStressChangePerCellAsGrdecl) {
+  // Mechanics results on the test mesh: uniform strain and stress changes, different per date.
+  const Mesh mesh = read_msh(path("mesh.msh"));
+  {
+    FieldSeriesWriter w(path("solve.h5"), mesh);
+    const std::size_t n = w.cell_count();
+    auto uniform = [&](const char* name, std::array<double, 3> d) {
+      Field f{name, 6, std::vector<double>(6 * n, 0.0)};
+      for (std::size_t c = 0; c < n; ++c)
+        for (int k = 0; k < 3; ++k) f.values[6 * c + k] = d[k];
+      return f;
+    };
+    const std::vector<Field> a{uniform("strain", {1e-4, 2e-4, 3e-4}), uniform("stress_change", {-1e5, -2e5, -3e5})};
+    const std::vector<Field> b{uniform("strain", {-1e-4, -1e-4, -1e-4}), uniform("stress_change", {1.5e5, 1.5e5, 1.5e5})};
+    w.add_step("2020-01-31", when_s("2020-01-31"), {}, a);
+    w.add_step("2020-04-30", when_s("2020-04-30"), {}, b);
+    w.commit();
+  }
+  const auto r = import(path("TINY.EGRID") + " --export " + path("solve.h5") + " -o " + path("mech.grdecl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Parse the GRDECL: keywords, values with N*value runs, '/' ends a keyword.
+  std::map<std::string, std::vector<double>> kw;
+  {
+    std::istringstream in(test::slurp(path("mech.grdecl")));
+    std::string line, current;
+    while (std::getline(in, line)) {
+      if (line.rfind("--", 0) == 0 || line.empty()) continue;
+      if (current.empty()) {
+        current = line;
+        continue;
+      }
+      std::istringstream ls(line);
+      std::string tok;
+      while (ls >> tok) {
+        if (tok == "/") {
+          current.clear();
+          break;
+        }
+        const auto star = tok.find('*');
+        if (star == std::string::npos) {
+          kw[current].push_back(std::stod(tok));
+        } else {
+          for (int k = 0; k < std::stoi(tok.substr(0, star)); ++k) kw[current].push_back(std::stod(tok.substr(star + 1)));
+        }
+      }
+    }
+  }
+  ASSERT_EQ(kw.size(), 4u);
+  const std::map<std::string, double> expected{{"UGSEV1", 6e-4}, {"UGSDSM1", -2.0}, {"UGSEV2", -3e-4}, {"UGSDSM2", 1.5}};
+  std::set<int> sure_cells;
+  for (const Tet& t : tets_of(mesh)) {
+    const Where w = locate_in_deck(t.centroid);
+    if (w.sure && w.inside) sure_cells.insert(w.i + NX * (w.j + NY * w.k));
+  }
+  EXPECT_GT(sure_cells.size(), 150u);
+  for (const auto& [name, value] : expected) {
+    ASSERT_EQ(kw[name].size(), 192u) << name;
+    EXPECT_EQ(kw[name][INACTIVE_I + NX * (INACTIVE_J + NY * INACTIVE_K)], 0.0) << name;
+    for (const int g : sure_cells) EXPECT_NEAR(kw[name][g], value, 1e-6 * std::abs(value)) << name << " cell " << g;
+  }
+  // An unknown date: exit 2, one line naming the steps there are, nothing written.
+  const auto bad = import(path("TINY.EGRID") + " --export " + path("solve.h5") + " --dates 2020-02-01 -o " + path("bad.grdecl"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_EQ(count_lines(bad.err), 1u) << bad.err;
+  EXPECT_NE(bad.err.find("2020-02-01"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("bad.grdecl")));
 }

@@ -8,6 +8,11 @@
 //
 //   flow CASE.DATA && ugs-import-eclipse CASE.EGRID --mesh model.msh -o dp_sim.h5
 //   ugs-import-eclipse CASE.EGRID --restart CASE.X0000 --mesh model.msh --case case.toml --offset 0,0,-5 -o dp_sim.h5
+//
+// With --export, the way back: ugs-solve's volumetric strain change and mean effective stress
+// change per active cell, at the dates asked, as GRDECL keywords (grdecl.hpp):
+//
+//   ugs-import-eclipse CASE.EGRID --export solve.h5 --dates 2020-03-01,2020-04-30 -o ugs_mech.grdecl
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +27,8 @@
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/cell_locator.hpp"
 
+#include "grdecl.hpp"
+
 namespace {
 
 struct Options {
@@ -30,6 +37,8 @@ struct Options {
   std::string mesh;
   std::string case_file;
   std::vector<double> offset;
+  std::string export_results;
+  std::vector<std::string> dates;
 };
 
 std::string extent_text(const std::array<double, 6>& b) {
@@ -53,16 +62,17 @@ int main(int argc, char** argv) {
   app.add_option("--restart", o.restart,
                  "Restart: unified CASE.UNRST, or any of the non-unified CASE.X0000, CASE.X0001, ... (all are read); "
                  "default: the one beside the EGRID");
-  app.add_option("--mesh", o.mesh, "Mechanics mesh (MSH 4.1; '-' = stdin)")->required();
+  app.add_option("--mesh", o.mesh, "Mechanics mesh (MSH 4.1; '-' = stdin)");
   app.add_option("--case", o.case_file,
                  "Case file: only tetrahedra of its pools' materials and aquifer_materials take the simulator's pressure");
   app.add_option("--offset", o.offset, "dx,dy,dz [m] added to the grid's map coordinates (a local grid origin)")
       ->delimiter(',')
       ->expected(3);
-  tool.add_output("", "Pressure change field series (HDF5 + XDMF beside it)");
+  app.add_option("--export", o.export_results,
+                 "The way back: ugs-solve results (strain, stress_change) to GRDECL keywords per active cell, written to -o");
+  app.add_option("--dates", o.dates, "With --export: the output dates to write (default: all), comma-separated")->delimiter(',');
+  tool.add_output("", "Pressure change field series (HDF5 + XDMF beside it); with --export, the GRDECL file ('-' = stdout)");
   return tool.run(argc, argv, [&] {
-    if (tool.output().empty() || tool.output() == "-")
-      throw ugs::InputError("-o", "give the output file (dp.h5): HDF5 needs a file, not a pipe");
     ugs::Point3 offset{0, 0, 0};
     if (!o.offset.empty()) {
       for (int d = 0; d < 3; ++d) {
@@ -70,6 +80,20 @@ int main(int argc, char** argv) {
         offset[d] = o.offset[d];
       }
     }
+    if (!o.export_results.empty()) {
+      if (!o.restart.empty() || !o.mesh.empty() || !o.case_file.empty())
+        throw ugs::InputError("--export", "goes without --restart, --mesh and --case (the results file holds its mesh)");
+      if (tool.output().empty()) throw ugs::InputError("-o", "give the GRDECL file to write ('-' = stdout)");
+      const ugs::eclipse::Grid grid = ugs::eclipse::read_egrid(o.egrid, offset);
+      const auto r = ugs::eclipse::export_grdecl(grid, o.export_results, o.dates, tool.output(), tool.command_line());
+      ugs::cli::info("wrote {}: {} keywords; {} of {} tetrahedra in active cells, {} active cells hold none (written as 0)", tool.output(),
+                     r.keywords.size(), r.tetrahedra - r.outside, r.tetrahedra, r.empty_cells);
+      return;
+    }
+    if (!o.dates.empty()) throw ugs::InputError("--dates", "goes with --export");
+    if (o.mesh.empty()) throw ugs::InputError("--mesh", "give the mechanics mesh the pressure goes onto");
+    if (tool.output().empty() || tool.output() == "-")
+      throw ugs::InputError("-o", "give the output file (dp.h5): HDF5 needs a file, not a pipe");
     std::set<std::string> materials;  // with --case: "mat:<name>" of the pools' materials
     if (!o.case_file.empty()) {
       const ugs::CaseFile cs = ugs::read_case_file(o.case_file);

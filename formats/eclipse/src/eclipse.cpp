@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <regex>
 
 #include <fmt/format.h>
@@ -57,12 +58,12 @@ auto eclio(const std::string& path, F&& f) -> decltype(f()) {
 
 // A file cut short keeps its array headers readable up to the cut, and EclFile reads headers only:
 // loading the last array with data checks that its tail is there ("tail not matching header").
+// (No clearData() here: EclFile::get() then finds the array marked loaded but gone.)
 void check_complete(Opm::EclIO::EclFile& f) {
   const auto list = f.getList();
   for (std::size_t i = list.size(); i-- > 0;)
     if (std::get<2>(list[i]) > 0) {
       f.loadData(static_cast<int>(i));
-      f.clearData();
       return;
     }
 }
@@ -91,6 +92,22 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
       throw InputError(path, fmt::format("grid dimensions {} x {} x {} (expected positive, at most 2e9 cells)", n[0], n[1], n[2]));
     grid.dims = n;
     const std::size_t total = static_cast<std::size_t>(n[0]) * n[1] * n[2];
+    // EclIO indexes COORD, ZCORN and ACTNUM without checking their sizes: check them here.
+    std::map<std::string, std::int64_t> size;
+    for (const auto& [name, type, count] : eg.getList())
+      if (!size.count(name)) size[name] = count;
+    const auto expect = [&](const std::string& name, std::size_t want, bool required) {
+      if (!size.count(name)) {
+        if (required) throw InputError(path, fmt::format("no {} array (expected a corner-point grid)", name));
+        return;
+      }
+      if (static_cast<std::size_t>(size[name]) != want)
+        throw InputError(path, fmt::format("{} has {} values, expected {} for a {} x {} x {} grid", name, size[name], want, n[0], n[1], n[2]));
+    };
+    if (size.count("COORDSYS")) throw InputError(path, "COORDSYS (several reservoirs in one grid) is not supported");
+    expect("COORD", 6 * static_cast<std::size_t>(n[0] + 1) * static_cast<std::size_t>(n[1] + 1), true);
+    expect("ZCORN", 8 * total, true);
+    expect("ACTNUM", total, false);
     grid.active.assign(total, -1);
     for (int k = 0; k < n[2]; ++k)
       for (int j = 0; j < n[1]; ++j)
@@ -116,11 +133,17 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
     const double L = length_unit_m(grid.length_unit, path + ": GRIDUNIT");
     // MAPAXES: Y-axis point, origin, X-axis point, in MAPUNITS (else the grid's unit); float32 in
     // the file, used in double from here on.
-    const auto& ma = eg.get_mapaxes();
+    // Read from the records themselves: EGrid::get_mapaxes() is converted by MAPUNITS in some
+    // opm-common versions and not in others.
     std::array<double, 2> origin{0, 0}, ex{1, 0}, ey{0, 1};
-    if (!ma.empty()) {
+    if (eg.hasKey("MAPAXES")) {
+      const std::vector<float> ma = eg.get<float>("MAPAXES");
       if (ma.size() != 6) throw InputError(path, fmt::format("MAPAXES has {} values (expected 6)", ma.size()));
-      const std::string mu = trim_upper(eg.get_mapunits());
+      std::string mu;
+      if (eg.hasKey("MAPUNITS")) {
+        const auto& v = eg.get<std::string>("MAPUNITS");
+        if (!v.empty()) mu = trim_upper(v[0]);
+      }
       const double M = mu.empty() ? L : length_unit_m(mu, path + ": MAPUNITS");
       std::array<double, 6> p;
       for (int q = 0; q < 6; ++q) {
