@@ -1,12 +1,15 @@
 """Same input, same output: the po-plain chain run twice gives the same bytes (docs/cli.md, "Determinism").
 
-    /usr/bin/python3 tests/e2e/test_determinism.py BUILD_DIR WORK_DIR [--seed N] [--mpi-only]
+    /usr/bin/python3 tests/e2e/test_determinism.py BUILD_DIR WORK_DIR [--seed N] [--first-run DIR]
 
 1. Runs `make demo SCALE=tiny` (every tool: plan, mesh, faults, flow, continuous and faulted
    mechanics, sampling, calibration with concurrent solver runs, report) twice into the same output
    path: once undisturbed, once with every process of the chain stopped (SIGSTOP) and continued
    (SIGCONT) at random moments, as a busy machine would. Every output file must be byte-identical; only
-   the *.log files, which hold wall-clock timings on purpose, are left out of the comparison.
+   the *.log files and the calibration cache's timing.txt, which hold wall-clock timings on purpose,
+   are left out of the comparison. With --first-run DIR, the undisturbed run is the one already in DIR
+   (the end-to-end test's, made with the same command): it is moved aside and the paused run writes to
+   the same path, so both runs see the same file names.
 2. Runs the mechanics of the chain's first run on 2 MPI processes twice (one run paused in the same way)
    and compares the results byte for byte: a given process count gives the same bytes.
 
@@ -94,7 +97,7 @@ def compare_trees(a, b, what):
           + ("" if fa == fb else f" (only first: {sorted(set(fa) - set(fb))[:5]}, only second: {sorted(set(fb) - set(fa))[:5]})"))
     compared = differ = 0
     for f in sorted(set(fa) & set(fb)):
-        if f.endswith(".log"):
+        if f.endswith(".log") or os.path.basename(f) == "timing.txt":
             continue  # wall-clock timings, on purpose
         compared += 1
         if not filecmp.cmp(os.path.join(a, f), os.path.join(b, f), shallow=False):
@@ -108,7 +111,7 @@ def main():
     ap.add_argument("build")
     ap.add_argument("work")
     ap.add_argument("--seed", type=int, default=None)
-    ap.add_argument("--mpi-only", action="store_true", help="skip the serial chain (needs a first run in WORK/run1)")
+    ap.add_argument("--first-run", help="an undisturbed run of the same make command already made (OUT=DIR)")
     a = ap.parse_args()
     build, work = os.path.abspath(a.build), os.path.abspath(a.work)
     seed = a.seed if a.seed is not None else random.SystemRandom().randrange(1 << 31)
@@ -116,22 +119,27 @@ def main():
     rng = random.Random(seed)
     env = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_ALLOW_RUN_AS_ROOT="1",
                OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", PYTHONDONTWRITEBYTECODE="1", GDAL_PAM_ENABLED="NO")
-    out = os.path.join(work, "out")
+    out = os.path.abspath(a.first_run) if a.first_run else os.path.join(work, "out")
     run1, run2 = os.path.join(work, "run1"), os.path.join(work, "run2")
     make = ["make", "-s", "-j2", "-C", SAMPLE, f"UGS_BIN={build}/tools", f"OUT={out}", "SCALE=tiny", "demo"]
 
-    if not a.mpi_only:
-        for d in (out, run1, run2):
-            shutil.rmtree(d, ignore_errors=True)
-        os.makedirs(work, exist_ok=True)
-        for name, dest, r in (("undisturbed", run1, None), ("paused", run2, rng)):
-            code, so, se, secs, pauses = run(make, env, r)
-            check(code == 0, f"make demo SCALE=tiny ({name}) exits 0 ({secs:.0f} s, {pauses} pauses)"
-                  + ("" if code == 0 else f": {se.strip()[-2000:]}"))
-            if code != 0:
-                return
-            os.rename(out, dest)
-        compare_trees(run1, run2, "serial chain")
+    for d in (run1, run2):
+        shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(work, exist_ok=True)
+    runs = [("paused", run2, rng)]
+    if a.first_run and os.path.isfile(os.path.join(out, "report", "summary.md")):
+        os.rename(out, run1)
+    else:
+        shutil.rmtree(out, ignore_errors=True)
+        runs.insert(0, ("undisturbed", run1, None))
+    for name, dest, r in runs:
+        code, so, se, secs, pauses = run(make, env, r)
+        check(code == 0, f"make demo SCALE=tiny ({name}) exits 0 ({secs:.0f} s, {pauses} pauses)"
+              + ("" if code == 0 else f": {se.strip()[-2000:]}"))
+        if code != 0:
+            return
+        os.rename(out, dest)
+    compare_trees(run1, run2, "serial chain")
 
     # The mechanics on 2 processes (MUMPS: the parallel direct solver), twice, one run paused.
     solve = os.path.join(build, "tools", "ugs-solve", "ugs-solve")
