@@ -330,3 +330,20 @@ TEST(Report, OutOfRangeIndicesAndFailingPlotsLeaveNothing) {
   EXPECT_EQ(no_leftovers(), "");
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
 }
+
+// Issue 20: measured series none of whose points lies on the model (plots.py died with
+// FileNotFoundError, exit 1): refused as ugs-sample and ugs-calibrate refuse them, exit 2.
+TEST(Report, EveryPsPointOffTheModelIsRefused) {
+  const Synthetic s = make_synthetic("report-off");
+  const std::string d = s.dir.string() + "/";
+  test::spit(s.dir / "far.csv", "pid,x,y,20150601,20150701\nF1,600000,4900000,0,1\nF2,600500,4900000,0,2\n");
+  const auto r = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+                           "case.toml --measured " + d + "far.csv -o " + d + "x");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("ugs-report: error: " + d + "far.csv: none of the 2 PS points lies on the model's top surface", 0), 0u)
+      << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  EXPECT_FALSE(fs::exists(s.dir / "x"));
+  for (const auto& e : fs::directory_iterator(s.dir)) EXPECT_NE(e.path().filename().string().rfind(".x.tmp", 0), 0u);
+  if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
+}

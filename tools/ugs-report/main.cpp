@@ -27,6 +27,7 @@
 #include "ugs/insar/crs.hpp"
 #include "ugs/insar/inputs.hpp"
 #include "ugs/insar/output_folder.hpp"
+#include "ugs/insar/sampling.hpp"
 #include "ugs/insar/subprocess.hpp"
 #include "ugs/meshing/geodata.hpp"
 
@@ -170,6 +171,10 @@ int main(int argc, char** argv) {
     if (c.measured_up && c.crs_wkt.empty() && !c.measured_up->source_crs.empty())
       throw InputError(o.measured, fmt::format("points are in {}, but the model CRS is unknown: give --crs or --case",
                                                insar::crs_name(c.measured_up->source_crs)));
+    // Measured series to compare with, none of them on the model: a wrong CRS or the wrong file,
+    // refused as ugs-sample and ugs-calibrate do (a report without the comparison asked for
+    // would look complete).
+    if (c.measured_up && o.samples.empty()) insar::require_some_on_surface(*c.top, *c.measured_up);
 
     // 2. The data of every figure, into the work folder.
     insar::OutputFolder out(output);

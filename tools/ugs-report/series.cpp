@@ -53,7 +53,7 @@ void build_series(Context& c) {
     const auto located = insar::locate_points(loc, c.measured_up->points, false);
     for (const auto& p : located.outside)
       c.notes.push_back(fmt::format("PS '{}' lies {:.0f} m outside the top surface: no time series", p.point.id, p.hit.distance));
-    if (located.sampled.empty()) return;
+    if (located.sampled.empty()) insar::require_some_on_surface(*c.top, *c.measured_up);  // throws
     insar::SurfaceDisplacement disp(c.surface_results, *c.top, "");
     sim = insar::sample_displacement(disp, located.sampled, {}, std::nullopt);
   }

@@ -23,6 +23,15 @@ Located locate_points(const SurfaceLocator& locator, const std::vector<PsPoint>&
   return r;
 }
 
+void require_some_on_surface(const TopSurface& surface, const PsData& data) {
+  const SurfaceLocator locator(surface);
+  for (const auto& p : data.points)
+    if (locator.locate(p.x, p.y).inside) return;
+  const auto e = surface.extent();
+  throw InputError(data.path, fmt::format("none of the {} PS points lies on the model's top surface (x {:.0f}..{:.0f}, y "
+                                          "{:.0f}..{:.0f}); wrong CRS?", data.points.size(), e[0], e[1], e[2], e[3]));
+}
+
 namespace {
 std::array<double, 3> interpolate(const std::vector<double>& u, const TopSurface& s, const SurfaceHit& h) {
   std::array<double, 3> v{0, 0, 0};

@@ -26,6 +26,10 @@ struct Located {
 
 Located locate_points(const SurfaceLocator& locator, const std::vector<PsPoint>& points, bool keep_outside);
 
+// InputError(data.path, "none of the N PS points lies on the model's top surface (x .., y ..);
+// wrong CRS?") when no point of `data` is inside `surface`'s plan footprint.
+void require_some_on_surface(const TopSurface& surface, const PsData& data);
+
 struct Samples {
   std::vector<LocatedPoint> points;
   std::vector<std::int64_t> dates;
