@@ -352,11 +352,16 @@ Evaluation Evaluator::run_one(const std::vector<double>& x) {
   write_text(tmp / "case.toml", setup_.case_template->render(values));
   write_text(tmp / "inputs.txt", inputs_);
   const fs::path out = tmp / "result.h5";
-  const std::string cmd = substitute(setup_.solver_command, {{"case", shell_quote((tmp / "case.toml").string())},
-                                                             {"out", shell_quote(out.string())},
-                                                             {"mesh", shell_quote(setup_.mesh_path)},
-                                                             {"dir", shell_quote(tmp.string())}});
-  write_text(tmp / "command.sh", cmd + "\n");
+  auto command_in = [&](const fs::path& dir) {
+    return substitute(setup_.solver_command, {{"case", shell_quote((dir / "case.toml").string())},
+                                              {"out", shell_quote((dir / "result.h5").string())},
+                                              {"mesh", shell_quote(setup_.mesh_path)},
+                                              {"dir", shell_quote(dir.string())}});
+  };
+  const std::string cmd = command_in(tmp);
+  // The record names the entry's own folder, not the temporary one (whose name holds the process id):
+  // the same evaluation writes the same bytes.
+  write_text(tmp / "command.sh", command_in(entry) + "\n");
   const auto r = run_shell(cmd, tmp.string(), (tmp / "solver.log").string());
   std::string params;
   for (std::size_t i = 0; i < x.size(); ++i) params += (i ? ", " : "") + setup_.params[i].name + " = " + toml_float(x[i]);
