@@ -6,11 +6,14 @@
 #include <cerrno>
 #include <cstring>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
 
 #include <cpl_conv.h>
+#include <cpl_json.h>
+#include <cpl_vsi.h>
 #include <cpl_error.h>
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -118,18 +121,120 @@ namespace {
 }
 }  // namespace
 
+namespace {
+bool is_geojson(GDALDataset& ds) {
+  return ds.GetDriver() && std::string(ds.GetDriver()->GetDescription()) == "GeoJSON";
+}
+
+std::string json_text(const CPLJSONObject& v) {
+  if (v.GetType() == CPLJSONObject::Type::Null) return "null";
+  std::string t = v.Format(CPLJSONObject::PrettyFormat::Plain);
+  if (t.size() > 40) t = t.substr(0, 37) + "...";
+  return t;
+}
+
+bool json_number(const CPLJSONObject& v) {
+  const auto t = v.GetType();
+  return t == CPLJSONObject::Type::Integer || t == CPLJSONObject::Type::Long ||
+         (t == CPLJSONObject::Type::Double && std::isfinite(v.ToDouble()));
+}
+
+// Every position of a GeoJSON "coordinates" member holds 2 or 3 finite numbers; `fail` names what is not.
+void check_positions(const CPLJSONObject& c, const std::function<void(const std::string&)>& fail) {
+  if (c.GetType() != CPLJSONObject::Type::Array) {
+    fail(fmt::format("coordinates {} are not an array of positions", json_text(c)));
+    return;
+  }
+  const CPLJSONArray a = c.ToArray();
+  const bool nested = a.Size() > 0 && a[0].GetType() == CPLJSONObject::Type::Array;
+  if (nested) {
+    for (int i = 0; i < a.Size(); ++i) check_positions(a[i], fail);
+    return;
+  }
+  for (int i = 0; i < a.Size(); ++i)
+    if (a[i].GetType() == CPLJSONObject::Type::Array || !json_number(a[i]))
+      fail(fmt::format("coordinate {} in position {} is not a number (expected [x, y] numbers)", json_text(a[i]),
+                       json_text(c)));
+  if (a.Size() < 2) fail(fmt::format("position {} has fewer than 2 numbers (expected [x, y])", json_text(c)));
+}
+
+void check_geometry(const CPLJSONObject& g, const std::function<void(const std::string&)>& fail) {
+  if (!g.IsValid() || g.GetType() == CPLJSONObject::Type::Null) return;  // no geometry: the callers decide
+  if (g.GetType() != CPLJSONObject::Type::Object) return fail(fmt::format("geometry {} is not an object", json_text(g)));
+  if (g.GetString("type") == "GeometryCollection") {
+    const CPLJSONArray parts = g.GetArray("geometries");
+    for (int i = 0; i < parts.Size(); ++i) check_geometry(parts[i], fail);
+    return;
+  }
+  const CPLJSONObject c = g.GetObj("coordinates");
+  if (!c.IsValid()) return fail(fmt::format("{} geometry without coordinates", g.GetString("type")));
+  check_positions(c, fail);
+}
+
+// GDAL drops a GeoJSON geometry holding a coordinate that is not a number ("abc", null) and keeps the
+// feature without it: a fault line would vanish without a word. Checked here instead, naming the
+// feature and the value (files up to 1 GB; larger ones are left to GDAL).
+void check_geojson_coordinates(const std::string& path) {
+  VSIStatBufL st;
+  if (VSIStatL(path.c_str(), &st) != 0 || st.st_size > (static_cast<vsi_l_offset>(1) << 30)) return;
+  CPLJSONDocument doc;
+  if (!doc.Load(path)) return;  // GDAL read it: its own parser is more lenient; nothing to add
+  const CPLJSONObject root = doc.GetRoot();
+  auto check_feature = [&](const CPLJSONObject& f, int index) {
+    const std::string name = f.GetObj("properties").GetString("name");
+    const std::string who = name.empty() ? fmt::format("feature {}", index) : fmt::format("feature {} ('{}')", index, name);
+    check_geometry(f.GetObj("geometry"), [&](const std::string& what) { throw InputError(path, who + ": " + what); });
+  };
+  const std::string type = root.GetString("type");
+  if (type == "FeatureCollection") {
+    const CPLJSONArray features = root.GetArray("features");
+    for (int i = 0; i < features.Size(); ++i) check_feature(features[i], i);
+  } else if (type == "Feature") {
+    check_feature(root, 0);
+  } else {
+    check_geometry(root, [&](const std::string& what) { throw InputError(path, what); });
+  }
+}
+}  // namespace
+
 GdalDatasetPtr open_vector(const std::string& path) {
   GdalDatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   if (!ds) open_failed(path, "a vector file", "a vector file: GeoJSON, GeoPackage, Shapefile, ...");
+  if (is_geojson(*ds)) check_geojson_coordinates(path);
   if (ds->GetLayerCount() == 0) throw InputError(path, "has no vector layer");
   return ds;
+}
+
+std::string layer_wkt(const std::string& path, GDALDataset& ds, OGRLayer& layer, bool used) {
+  const OGRSpatialReference* s = layer.GetSpatialRef();
+  if (!s) return "";
+  if (!used) return wkt_of(*s);
+  // A GeoJSON file without a "crs" member is WGS 84 longitude/latitude (RFC 7946): GDAL says so and
+  // PROJ then fails on projected coordinates with "Invalid coordinate". Say that the crs is missing.
+  OGREnvelope env;
+  if (is_geojson(ds) && s->IsGeographic() && layer.GetExtent(&env, TRUE) == OGRERR_NONE &&
+      (env.MinX < -180.5 || env.MaxX > 360.5 || env.MinY < -90.5 || env.MaxY > 90.5)) {
+    bool declared = false;
+    CPLJSONDocument doc;
+    if (doc.Load(path)) declared = doc.GetRoot().GetObj("crs").IsValid();
+    if (!declared)
+      throw InputError(path, fmt::format("has no \"crs\" member, so GeoJSON takes its coordinates as WGS 84 longitude/"
+                                         "latitude (RFC 7946), but they reach x {:.0f} .. {:.0f}, y {:.0f} .. {:.0f}, which "
+                                         "are not degrees: add the CRS of the coordinates, e.g. \"crs\": {{\"type\": "
+                                         "\"name\", \"properties\": {{\"name\": \"urn:ogc:def:crs:EPSG::32632\"}}}}",
+                                         env.MinX, env.MaxX, env.MinY, env.MaxY));
+    throw InputError(path, fmt::format("its crs {} is geographic (degrees), but the coordinates reach x {:.0f} .. {:.0f}, "
+                                       "y {:.0f} .. {:.0f}: give the CRS the coordinates are in",
+                                       crs_label(wkt_of(*s)), env.MinX, env.MaxX, env.MinY, env.MaxY));
+  }
+  return wkt_of(*s);
 }
 
 std::string vector_crs(const std::string& path) {
   QuietGdal quiet;
   auto ds = open_vector(path);
   for (int i = 0; i < ds->GetLayerCount(); ++i)
-    if (const OGRSpatialReference* s = ds->GetLayer(i)->GetSpatialRef()) return wkt_of(*s);
+    if (const std::string w = layer_wkt(path, *ds, *ds->GetLayer(i), true); !w.empty()) return w;
   return "";
 }
 
@@ -178,8 +283,7 @@ VectorData read_vector(const std::string& path, const std::string& model_wkt, co
   out.path = path;
   for (int li = 0; li < ds->GetLayerCount(); ++li) {
     OGRLayer* layer = ds->GetLayer(li);
-    const OGRSpatialReference* lsrs = layer->GetSpatialRef();
-    const std::string lwkt = lsrs ? wkt_of(*lsrs) : "";
+    const std::string lwkt = layer_wkt(path, *ds, *layer, !model_wkt.empty());
     if (out.source_crs.empty()) out.source_crs = lwkt;
     auto ct = transformation(lwkt, model_wkt, path);
     if (!where.empty() && layer->SetAttributeFilter(where.c_str()) != OGRERR_NONE)

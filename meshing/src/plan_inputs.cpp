@@ -30,8 +30,7 @@ std::vector<RawFeature> read_features(const std::string& path, const std::string
   std::vector<RawFeature> out;
   for (int li = 0; li < ds->GetLayerCount(); ++li) {
     OGRLayer* layer = ds->GetLayer(li);
-    const OGRSpatialReference* s = layer->GetSpatialRef();
-    auto ct = geo::transformation(s ? geo::wkt_of(*s) : "", model_wkt, path);
+    auto ct = geo::transformation(geo::layer_wkt(path, *ds, *layer, true), model_wkt, path);
     const OGRFeatureDefn* defn = layer->GetLayerDefn();
     const int name_i = defn->GetFieldIndex(in.name_field.c_str());
     const int size_i = defn->GetFieldIndex(in.size_field.c_str());
@@ -53,7 +52,9 @@ std::vector<RawFeature> read_features(const std::string& path, const std::string
                                              in.size_field, *f.size));
       }
       const OGRGeometry* g = feat->GetGeometryRef();
-      if (!g || g->IsEmpty()) continue;
+      // A feature without geometry would give a group fewer without a word (GeoJSON coordinates that
+      // are not numbers were refused by open_vector, naming the value).
+      if (!g || g->IsEmpty()) throw InputError(path, fmt::format("{} has no geometry (expected a polygon or a line)", feature_label(f)));
       f.geom.reset(g->hasCurveGeometry() ? g->getLinearGeometry() : g->clone());
       f.geom->flattenTo2D();
       if (ct && f.geom->transform(ct.get()) != OGRERR_NONE)

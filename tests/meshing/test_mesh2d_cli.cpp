@@ -242,3 +242,40 @@ TEST_F(Mesh2dCli, RefinementWithHoleOverlappedAndClippedKeepsItsRegion) {
   }
   EXPECT_LT(longest, 300.0);
 }
+
+// Issue 20: a fault line with a coordinate that is not a number ("abc", null) was dropped by GDAL
+// and the plan had one fault group fewer with exit 0. Now exit 2 naming file, feature and value;
+// a feature without geometry is refused too.
+TEST_F(Mesh2dCli, CoordinateThatIsNotANumberIsRefused) {
+  const std::string head = R"({"type": "FeatureCollection",
+"crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}}, "features": [
+{"type": "Feature", "properties": {"name": "good"}, "geometry": {"type": "LineString", "coordinates": [[680500, 4951500], [685500, 4952500]]}},
+)";
+  const std::string box = "--box 680000/686000/4950000/4954000 --hmax 800 --fault ";
+  test::spit(p("abc.geojson"), head + R"({"type": "Feature", "properties": {"name": "f1"}, "geometry": {"type": "LineString",
+  "coordinates": [[680500, 4950500], [683000, "abc"], [685500, 4953500]]}}]})");
+  expect_bad(box + p("abc.geojson").string(),
+             p("abc.geojson").string() + ": feature 1 ('f1'): coordinate \"abc\" in position [683000,\"abc\"] is not a number");
+  test::spit(p("null.geojson"), head + R"({"type": "Feature", "properties": {"name": "f3"}, "geometry": {"type": "LineString",
+  "coordinates": [[680500, 4952500], [null, 4953000]]}}]})");
+  expect_bad(box + p("null.geojson").string(),
+             p("null.geojson").string() + ": feature 1 ('f3'): coordinate null in position [null,4953000] is not a number");
+  test::spit(p("short.geojson"), head + R"({"type": "Feature", "properties": {"name": "f4"}, "geometry": {"type": "LineString",
+  "coordinates": [[680500, 4952500], [681000]]}}]})");
+  expect_bad(box + p("short.geojson").string(), "feature 1 ('f4'): position [681000] has fewer than 2 numbers");
+  test::spit(p("nogeom.geojson"), head + R"({"type": "Feature", "properties": {"name": "f5"}, "geometry": null}]})");
+  expect_bad(box + p("nogeom.geojson").string(), p("nogeom.geojson").string() + ": feature 1 ('f5') has no geometry");
+}
+
+// Issue 20: a GeoJSON file without "crs" is WGS 84 longitude/latitude for GDAL (RFC 7946); with
+// projected coordinates PROJ failed with "Invalid coordinate". The message says the crs is missing.
+TEST_F(Mesh2dCli, GeoJsonWithoutCrsSaysSo) {
+  test::spit(p("nocrs.geojson"), R"({"type": "FeatureCollection", "features": [
+{"type": "Feature", "properties": {"name": "f2"}, "geometry": {"type": "LineString", "coordinates": [[680500, 4951500], [685500, 4952500]]}}]})");
+  const std::string want = p("nocrs.geojson").string() + ": has no \"crs\" member, so GeoJSON takes its coordinates as WGS 84 "
+                           "longitude/latitude (RFC 7946), but they reach x 680500 .. 685500, y 4951500 .. 4952500, which are "
+                           "not degrees";
+  expect_bad("--box 680000/686000/4950000/4954000 --hmax 800 --fault " + p("nocrs.geojson").string(), want);
+  expect_bad("--crs EPSG:32632 --box 680000/686000/4950000/4954000 --hmax 800 --fault " + p("nocrs.geojson").string(), want);
+  expect_bad("--domain " + p("nocrs.geojson").string(), want);
+}

@@ -6,6 +6,7 @@
 
 #include <gdal_priv.h>
 #include <ogr_geometry.h>
+#include <ogrsf_frmts.h>
 #include <ogr_spatialref.h>
 
 #include "ugs/meshing/geodata.hpp"
@@ -28,7 +29,13 @@ struct GdalClose {
   void operator()(GDALDataset* d) const { GDALClose(d); }
 };
 using GdalDatasetPtr = std::unique_ptr<GDALDataset, GdalClose>;
+// Opens a vector file; a GeoJSON file is also checked for coordinates that are not numbers (GDAL
+// would drop such a geometry silently): InputError naming the feature and the value.
 GdalDatasetPtr open_vector(const std::string& path);
+// The layer's CRS as WKT ("" if none). When `used` (the coordinates will be transformed with it):
+// InputError when a GeoJSON file has no "crs" member but coordinates that are not longitude/latitude
+// (GDAL takes such a file as WGS 84 and PROJ would fail with "Invalid coordinate").
+std::string layer_wkt(const std::string& path, GDALDataset& ds, OGRLayer& layer, bool used);
 
 // x = easting, y = northing whatever the CRS's official axis order.
 OGRSpatialReference srs_from_wkt(const std::string& wkt);
