@@ -127,6 +127,40 @@ TEST(SampleCli, BadInputs) {
   fs::remove_all(m.dir);
 }
 
+// Issue 20: a GeoJSON without "crs" member holding projected coordinates (GDAL takes it as WGS 84,
+// and PROJ failed with a message that did not say why): refused, naming the missing CRS; with
+// --points-crs it is read; a GeoJSON in longitude/latitude is WGS 84 (RFC 7946).
+TEST(SampleCli, GeoJsonWithoutCrs) {
+  const Model m = write_model("sample-nocrs");
+  const std::string d = m.dir.string() + "/";
+  const std::string base = test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --crs EPSG:32632 ";
+  auto geojson = [](double x, double y) {
+    return fmt::format(R"({{"type":"FeatureCollection","features":[{{"type":"Feature","properties":{{"pid":"G1"}},)"
+                       R"("geometry":{{"type":"Point","coordinates":[{:.9f},{:.9f}]}}}}]}})",
+                       x, y);
+  };
+  test::spit(m.dir / "nocrs.geojson", geojson(680555.5, 4950400.0));
+  auto r = test::run(base + "--points " + d + "nocrs.geojson -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "nocrs.geojson: the layer has no coordinate reference system (expected a \"crs\" "
+                                              "member, e.g. EPSG:32632, or --points-crs); (680556, 4.9504e+06) is no longitude/latitude"))
+      << r.err;
+  EXPECT_FALSE(fs::exists(m.dir / "o.csv"));
+  r = test::run(base + "--points " + d + "nocrs.geojson --points-crs EPSG:32632 -o " + d + "o.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable a = CsvTable::read(d + "o.csv");
+  EXPECT_NEAR(a.number(0, a.column("x_m")), 680555.5, 1e-6);
+  std::vector<double> x{680555.5}, y{4950400.0};
+  insar::CoordinateTransform ct(insar::any_crs_wkt("EPSG:32632", "t"), insar::any_crs_wkt("EPSG:4326", "t"), "t");
+  ct.apply(x, y, {});
+  test::spit(m.dir / "lonlat.geojson", geojson(x[0], y[0]));
+  r = test::run(base + "--points " + d + "lonlat.geojson -o " + d + "o2.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CsvTable b = CsvTable::read(d + "o2.csv");
+  EXPECT_NEAR(b.number(0, b.column("x_m")), 680555.5, 1e-3);
+  EXPECT_NEAR(b.number(0, b.column("y_m")), 4950400.0, 1e-3);
+  if (!HasFailure()) fs::remove_all(m.dir);
+}
+
 TEST(CalibrateCli, BadInputs) {
   const auto dir = test::temp_dir("calibrate-bad");
   const std::string d = dir.string() + "/";

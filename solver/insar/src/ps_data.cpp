@@ -8,6 +8,7 @@
 #include <set>
 #include <unordered_map>
 
+#include <cpl_json.h>
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 #include <fmt/format.h>
@@ -191,10 +192,21 @@ PsData read_ogr_points(const std::string& path, const PsReadOptions& o) {
   d.layout = "OGR";
   if (o.require_series)
     throw InputError(path, "vector files carry no displacement series here: use the EGMS CSV layout (YYYYMMDD columns)");
+  // GDAL gives a GeoJSON without a "crs" member WGS 84 (RFC 7946): right for longitude/latitude,
+  // a wrong answer for projected coordinates. Whether the member is there is read from the file.
+  const std::string driver = ds->GetDriver() ? ds->GetDriver()->GetDescription() : "";
+  bool declared_crs = true;
+  if (driver == "GeoJSON") {
+    CPLJSONDocument doc;
+    declared_crs = doc.Load(path) && doc.GetRoot().GetObj("crs").IsValid();
+  } else if (driver == "GeoJSONSeq") {
+    declared_crs = false;
+  }
   for (int li = 0; li < ds->GetLayerCount(); ++li) {
     OGRLayer* layer = ds->GetLayer(li);
     std::string layer_crs;
     if (const OGRSpatialReference* s = layer->GetSpatialRef()) layer_crs = wkt_of_srs(*s);
+    if (!declared_crs || layer_crs.empty()) d.undeclared_crs = true;
     if (li == 0 || d.source_crs.empty()) d.source_crs = layer_crs;
     OGRFeatureDefn* defn = layer->GetLayerDefn();
     int idfield = -1;
@@ -222,7 +234,28 @@ PsData read_ogr_points(const std::string& path, const PsReadOptions& o) {
       d.points.push_back(std::move(p));
     }
   }
-  if (!o.points_crs.empty()) d.source_crs = any_crs_wkt(o.points_crs, "--points-crs");
+  if (!o.points_crs.empty()) {
+    d.source_crs = any_crs_wkt(o.points_crs, "--points-crs");
+    d.undeclared_crs = false;
+  } else if (d.undeclared_crs && !d.points.empty()) {
+    const bool geojson = driver.rfind("GeoJSON", 0) == 0;
+    const auto not_lonlat = std::find_if(d.points.begin(), d.points.end(),
+                                         [](const PsPoint& p) { return !(std::abs(p.x) <= 180 && std::abs(p.y) <= 90); });
+    if (geojson && not_lonlat == d.points.end()) {
+      d.undeclared_crs = false;  // RFC 7946: longitude/latitude in WGS 84, as GDAL says
+    } else if (geojson || !o.model_crs.empty()) {
+      // GDAL's WGS 84 would send projected coordinates off the globe; any other layer without a
+      // CRS cannot be placed in the model's.
+      throw InputError(path, fmt::format("the layer has no coordinate reference system (expected {}, e.g. EPSG:32632, or "
+                                         "--points-crs){}",
+                                         geojson ? "a \"crs\" member" : driver == "ESRI Shapefile" ? "a .prj file beside it"
+                                                                                                  : "a CRS in the layer",
+                                         not_lonlat == d.points.end() || !geojson
+                                             ? std::string()
+                                             : fmt::format("; ({:.6g}, {:.6g}) is no longitude/latitude", not_lonlat->x,
+                                                           not_lonlat->y)));
+    }
+  }
   check_ids_unique(d);
   return d;
 }

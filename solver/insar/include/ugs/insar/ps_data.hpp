@@ -4,7 +4,10 @@
 //     column per acquisition date named YYYYMMDD, displacement in mm;
 //   - a generic CSV: x,y (model CRS unless told) or lon,lat (EPSG:4326 unless told), an optional
 //     id column (pid, id, name), optional date columns (YYYYMMDD or YYYY-MM-DD) in mm;
-//   - any OGR point file (GeoJSON, GeoPackage, Shapefile, ...), in the layer's CRS.
+//   - any OGR point file (GeoJSON, GeoPackage, Shapefile, ...), in the layer's CRS. A layer without
+//     one (a GeoJSON without "crs" member, a Shapefile without .prj) is refused when the points
+//     must be placed in a model CRS, unless --points-crs says it; a GeoJSON without "crs" whose
+//     coordinates are all longitude/latitude is WGS 84 (RFC 7946).
 // Points are reprojected to the model CRS through PROJ. Empty cells and "NaN" are missing values.
 #pragma once
 #include <cstdint>
@@ -26,6 +29,7 @@ struct PsData {
   std::string layout;             // "EGMS", "CSV" or "OGR"
   std::string source_crs;         // WKT of the file's coordinates ("" if unknown)
   bool reprojected = false;       // coordinates were transformed to the model CRS
+  bool undeclared_crs = false;    // an OGR layer without a CRS, taken as the model's (no model CRS known)
   std::vector<PsPoint> points;
   std::vector<std::int64_t> dates;   // acquisition dates (s since 1970), increasing; may be empty
   std::vector<double> values_mm;     // points x dates, NaN where missing
