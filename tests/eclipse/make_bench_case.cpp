@@ -3,7 +3,7 @@
 // DIR/BENCH.EGRID: NX x NY x NZ corner-point cells of 50 x 50 x 2 m, tops dipping and twisted,
 // every 50th cell inactive, MAPAXES about (600000, 5000000); DIR/BENCH.UNRST: STEPS + 1 report
 // steps of PRESSURE (METRIC), monthly; DIR/mesh.msh: a box mesh of HEXES_X x HEXES_Y x HEXES_Z
-// hexahedra (6 tetrahedra each) over the grid and 10 % beyond it.
+// hexahedra (6 tetrahedra each) over the grid, 5 % beyond it in plan and 5 m above and below.
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
   const double X = nx * dx, Y = ny * dy;
   spec.x = ugs::linspace(-0.05 * X, 1.05 * X, std::stoi(argv[6]));
   spec.y = ugs::linspace(-0.05 * Y, 1.05 * Y, std::stoi(argv[7]));
-  spec.z = ugs::linspace(-(top(nx, ny) + nz * dz) - 20, -990, std::stoi(argv[8]));
+  spec.z = ugs::linspace(-(top(nx, ny) + nz * dz) - 5, -top(0, 0) + 5, std::stoi(argv[8]));
   ugs::Mesh m = ugs::make_box_mesh(spec);
   for (auto& n : m.nodes) n = {600000 + 0.8 * n[0] - 0.6 * n[1], 5000000 + 0.6 * n[0] + 0.8 * n[1], n[2]};
   ugs::write_msh(m, dir + "/mesh.msh", ugs::MshEncoding::Binary);

@@ -440,3 +440,44 @@ TEST_F(ImportEclipse, ExportsStrainAndStressChangePerCellAsGrdecl) {
   EXPECT_NE(bad.err.find("2020-02-01"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("bad.grdecl")));
 }
+
+TEST_F(ImportEclipse, SolveTakesTheImportedPressureAndItWinsOverANodeField) {
+  // The two commands of docs/eclipse.md: import, then ugs-solve. A ugs-flow-like node field of zero
+  // over the whole mesh given too changes nothing where the simulator's cell field is (its
+  // elements keep the simulator's pressure), and adds zero elsewhere: the same displacements.
+  ASSERT_EQ(import(path("TINY.EGRID") + " --mesh " + path("mesh.msh") + " -o " + path("sim.h5")).exit_code, 0);
+  const Mesh mesh = read_msh(path("mesh.msh"));
+  {
+    FieldSeriesWriter w(path("zero.h5"), mesh);
+    const Field zero{"dp", 1, std::vector<double>(mesh.num_nodes(), 0.0)};
+    w.add_step("2020-01-01", when_s("2020-01-01"), std::span<const Field>(&zero, 1));
+    w.add_step("2020-04-30", when_s("2020-04-30"), std::span<const Field>(&zero, 1));
+    w.commit();
+  }
+  test::spit(*dir_ / "solve.toml",
+             "[initial_stress]\nsurface_elevation_m = 0\nlithostatic_gradient_MPa_per_m = 0.0226\n"
+             "hydrostatic_gradient_MPa_per_m = 0.0100\nk0 = 0.9\n"
+             "[[material]]\nname = \"cap\"\nlaw = \"elastic\"\nnu = 0.3\n"
+             "[[material]]\nname = \"reservoir\"\nlaw = \"elastic\"\nnu = 0.3\n");
+  const std::string solve = test::tool("ugs-solve") + " " + path("mesh.msh") + " --case " + path("solve.toml");
+  const auto a = test::run(solve + " --pressure " + path("sim.h5") + " -o " + path("a.h5"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const auto b = test::run(solve + " --pressure " + path("zero.h5") + " --pressure " + path("sim.h5") + " -o " + path("b.h5"));
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  FieldSeriesReader ra(path("a.h5")), rb(path("b.h5"));
+  ASSERT_EQ(ra.steps().size(), 5u);
+  ASSERT_EQ(rb.steps().size(), 5u);
+  double up_injection = 0, up_production = 0;
+  for (std::size_t s = 0; s < 5; ++s) {
+    const auto ua = ra.node_field(s, "u").values, ub = rb.node_field(s, "u").values;
+    ASSERT_EQ(ua.size(), ub.size());
+    for (std::size_t i = 0; i < ua.size(); ++i) ASSERT_NEAR(ua[i], ub[i], 1e-12 + 1e-9 * std::abs(ua[i])) << "step " << s;
+    for (std::size_t i = 2; i < ua.size(); i += 3) {
+      if (s == 2) up_injection = std::max(up_injection, ua[i]);
+      if (s == 4) up_production = std::min(up_production, ua[i]);
+    }
+  }
+  // Injection (+1.45 MPa at most) lifts, production below the start (-1.0 MPa) lowers the grid.
+  EXPECT_GT(up_injection, 0.0);
+  EXPECT_LT(up_production, 0.0);
+}
