@@ -547,6 +547,54 @@ TEST(SolveTool, WarningsOnlyOnceTheInputsAreChecked) {
   EXPECT_EQ(r.err.find(warning, first + 1), std::string::npos) << r.err;
 }
 
+// The predictor after reloading past sigma_max (issue 20). V1 column: depletion to 26 MPa,
+// recharge to 23, deeper depletion to 28 (virgin again past sigma_max = 26), recharge to 25. The
+// projection on the earlier increments, A-orthonormal for the matrix of the last preconditioner
+// setup, started the last step's Krylov solve from 1.3e9 times its residual: DIVERGED_DTOL, and a
+// silent split into 2 sub-steps. Now a prediction that does not reduce the residual is rebuilt
+// for the current matrix or dropped, and a split says why at -v.
+TEST(SolveTool, PredictorAfterReloadingPastSigmaMaxReducesTheResidual) {
+  Dir d("solve-predictor");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d) + " -o " + d / "out.h5" + " -v -- -ugs_newton_monitor");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t predictions = 0, steps = 0;
+  std::istringstream lines(r.out + r.err);
+  for (std::string line; std::getline(lines, line);) {
+    if (const auto p = line.find(", predictor "); p != std::string::npos) {
+      ++predictions;
+      const std::string v = line.substr(p + 12, line.find(',', p + 12) - p - 12);
+      ASSERT_NE(v, "dropped") << line;
+      EXPECT_LT(std::stod(v), 1.0) << line;  // it reduces the step's residual
+    }
+    if (line.find(": step ") != std::string::npos && line.find(" Newton iteration") != std::string::npos) {
+      ++steps;
+      EXPECT_NE(line.find(", 1 sub-step,"), std::string::npos) << line;
+    }
+    EXPECT_EQ(line.find("split into"), std::string::npos) << line;
+  }
+  EXPECT_EQ(steps, 5u) << r.err;
+  EXPECT_EQ(predictions, 3u) << r.out << r.err;  // steps 3-5 (step 2 has no earlier increment)
+  // -v names the Krylov method that runs: GMRES for the non-symmetric hypo-plastic tangent.
+  EXPECT_NE(r.err.find("KSP gmres + PC hypre (--solver cg-hypre, with GMRES: the hypo-plastic tangent is not symmetric)"),
+            std::string::npos) << r.err;
+}
+
+// A step split into sub-steps says why at -v (one line naming the first failure).
+TEST(SolveTool, SubStepsSayWhy) {
+  Dir d("solve-substeps");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  // Step 4 (the reload past sigma_max) takes 5 Newton iterations in one piece.
+  variant(d, "[solver]\n", "[solver]\nmax_newton_iterations = 4\n", "split.toml");
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d, "split.toml") + " -o " + d / "out.h5" + " -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("ugs-solve: step 4/5 (2003-01-01): split into 3 sub-steps: Newton did not converge in 4 iterations "
+                       "(relative residuals 1.00e+00, "),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("split into"), r.err.rfind("split into")) << r.err;  // the other steps are whole
+}
+
 TEST(SolveTool, HelpAndUsage) {
   auto r = test::run(test::solve_cmd() + " --help");
   EXPECT_EQ(r.exit_code, 0);

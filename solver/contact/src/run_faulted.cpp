@@ -342,6 +342,8 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
                        label, rep.newton_iterations, rep.newton_iterations == 1 ? "" : "s", rep.linear_iterations,
                        rep.substeps, rep.substeps == 1 ? "" : "s", after.state_changes - before.state_changes, rep.seconds,
                        fault_note));
+    if (!rep.substep_reason.empty())
+      log(1, fmt::format("{}: split into {} sub-steps: {}", label, rep.substeps, rep.substep_reason));
     if (set.search && !have_snapshot && i + 1 == first_after) {
       mech::SavedState st = solver.gather_state();
       if (rank == 0) root->snapshot = std::move(st);

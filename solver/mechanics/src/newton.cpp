@@ -96,10 +96,14 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
         c[3] += hold[h] != fem::Hold::None;
       }
       MPI_Allreduce(MPI_IN_PLACE, c, 4, MPI_LONG_LONG, MPI_SUM, lm.comm);
+      // The predictor (first iteration): the residual its prediction left, relative to r_0.
+      const std::string pred = k != 1 || coupling || predicted < 0 ? ""
+                               : std::isfinite(predicted)          ? fmt::format(", predictor {:.3e}", predicted)
+                                                                   : std::string(", predictor dropped");
       UGS_PETSC(PetscPrintf(lm.comm,
-                            "  Newton %d: linear rtol %.1e, %d iterations%s%s; residual %.3e; branch changes %lld (virgin "
+                            "  Newton %d: linear rtol %.1e%s, %d iterations%s%s; residual %.3e; branch changes %lld (virgin "
                             "%lld, unloading %lld, reloading %lld), held %lld\n",
-                            k, rtol, static_cast<int>(s.iterations), *s.setup ? ", preconditioner set up: " : "",
+                            k, rtol, pred.c_str(), static_cast<int>(s.iterations), *s.setup ? ", preconditioner set up: " : "",
                             s.setup, rk / r0, moved_all, c[0], c[1], c[2], c[3]));
     }
     rep.residuals.push_back(rk / r0);
@@ -238,6 +242,8 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
     }
     restore_u();
     if (coupling) coupling->revert_substep();
+    if (rep.substep_reason.empty())
+      rep.substep_reason = fmt::format("{} (relative residuals {})", why, history_text(rep.residuals));
     if (h / 2 < h_min * (1 - 1e-12) || (!has_hyp && !coupling)) {
       if (coupling) coupling->revert_step();
       committed = committed_start;

@@ -4,13 +4,44 @@
 
 namespace ugs::mech {
 
-bool MechanicsSolver::Impl::predict() {
+double MechanicsSolver::Impl::projection_residual() {
   const int m = static_cast<int>(basis.size());
-  if (m == 0) return false;
   std::vector<PetscScalar> c(m);
   UGS_PETSC(VecMDot(r, m, basis.data(), c.data()));
   UGS_PETSC(VecSet(du, 0.0));
   UGS_PETSC(VecMAXPY(du, m, c.data(), basis.data()));
+  // The residual the first Krylov iterate starts from, r - A du0, relative to r.
+  PetscReal rn = 0, pn = 0;
+  UGS_PETSC(MatMult(A, du, aw));
+  UGS_PETSC(VecAYPX(aw, -1.0, r));
+  UGS_PETSC(VecNorm(r, NORM_2, &rn));
+  UGS_PETSC(VecNorm(aw, NORM_2, &pn));
+  return rn > 0 ? pn / rn : 0.0;
+}
+
+bool MechanicsSolver::Impl::predict() {
+  predicted = -1;
+  if (basis.empty()) return false;
+  PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
+  if (!aw) UGS_PETSC(VecDuplicate(u, &aw));
+  // W is A-orthonormal for the matrix of the last preconditioner setup. When the matrix has
+  // changed much since (elements reloading past sigma_max soften by c_R), the projection can be
+  // far off: on the V1 column, unloading after the reload past sigma_max, it started the Krylov
+  // solve from 1.3e9 times the residual, which then diverged (DIVERGED_DTOL) and forced a
+  // sub-step. A prediction must reduce the residual; if it does not, the basis is made
+  // A-orthonormal for the current matrix and the projection tried once more, else dropped.
+  double rel = projection_residual();
+  if (!(rel < 1.0)) {
+    refresh_basis();
+    rel = basis.empty() ? INFINITY : projection_residual();
+  }
+  PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
+  if (!(rel < 1.0)) {
+    UGS_PETSC(VecSet(du, 0.0));
+    predicted = INFINITY;
+    return false;
+  }
+  predicted = rel;
   return true;
 }
 

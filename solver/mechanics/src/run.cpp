@@ -274,6 +274,8 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
                        rep.newton_iterations == 1 ? "" : "s", rep.linear_iterations, rep.substeps, rep.substeps == 1 ? "" : "s",
                        rep.seconds,
                        rep.off_branch > 0 ? fmt::format(" (held elements off their branch: {:.1e})", rep.off_branch) : ""));
+    if (!rep.substep_reason.empty())
+      log(1, fmt::format("{}: split into {} sub-steps: {}", label, rep.substeps, rep.substep_reason));
     // Outputs.
     const auto to = Clock::now();
     const std::vector<double> u = solver.gather_displacement();

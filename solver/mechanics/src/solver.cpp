@@ -221,9 +221,16 @@ std::string MechanicsSolver::solver_description() const {
   KSPGetType(s.ksp, &kt);
   KSPGetPC(s.ksp, &pc);
   PCGetType(pc, &pt);
-  return fmt::format("KSP {} + PC {} ({}), {} process{}, {} partition", kt ? kt : "?", pt ? pt : "?",
-                     linear_solver_name(s.opt.linear), s.lm.size, s.lm.size > 1 ? "es" : "",
-                     s.opt.partition == PartitionMethod::PtScotch ? "PT-Scotch" : "RCB");
+  // The Krylov method actually used: the cg-* solvers run GMRES when the tangent is not symmetric
+  // (set_krylov), or whatever -ksp_type asked for.
+  const std::string name = linear_solver_name(s.opt.linear);
+  const std::string krylov = kt ? kt : "?";
+  std::string why;
+  if (name.rfind("cg-", 0) == 0 && krylov != KSPCG)
+    why = s.has_hyp && krylov == KSPGMRES ? ", with GMRES: the hypo-plastic tangent is not symmetric"
+                                          : fmt::format(", with {} (-ksp_type)", krylov);
+  return fmt::format("KSP {} + PC {} (--solver {}{}), {} process{}, {} partition", krylov, pt ? pt : "?", name, why,
+                     s.lm.size, s.lm.size > 1 ? "es" : "", s.opt.partition == PartitionMethod::PtScotch ? "PT-Scotch" : "RCB");
 }
 
 }  // namespace ugs::mech

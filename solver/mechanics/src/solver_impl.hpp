@@ -256,7 +256,13 @@ struct MechanicsSolver::Impl {
   // projection du0 = W (W^T r) costs dot products only. W is orthonormal for the matrix it was
   // built with; when the matrix changes it stays a good (no longer optimal) guess until the
   // preconditioner is rebuilt, when A W is recomputed and W re-orthonormalized.
+  // The prediction is used only when it reduces the residual (||r - A du0|| < ||r||); otherwise
+  // the basis is refreshed for the current matrix and the projection tried again, else dropped.
   bool predict();
+  // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw).
+  double projection_residual();
+  // The relative residual the last prediction left (-ugs_newton_monitor): -1 none tried, inf dropped.
+  double predicted = -1;
 
   // Re-orthonormalizes the basis for the current matrix (after a preconditioner rebuild).
   void refresh_basis();

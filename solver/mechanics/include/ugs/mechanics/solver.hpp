@@ -49,6 +49,8 @@ struct StepReport {
   int preconditioner_setups = 0;
   std::vector<double> residuals;  // ||r_k|| / ||r_0|| of the last (sub-)step tried
   std::string failure;            // why the step failed
+  // Why the step was split into sub-steps (the first failure and its residuals; empty if it was not).
+  std::string substep_reason;
   // Elements held on a branch (docs/mechanics.md "Newton iteration") that ended on the other side
   // of their knee: bound on the residual of the nearest state obeying the law, relative to r_0.
   double off_branch = 0;
