@@ -319,3 +319,52 @@ TEST(CalibrateCli, CacheKeyCoversPointPositions) {
   EXPECT_EQ(entries, 8u);  // 2 values x (up1, up2, up3, up1 with other results)
   if (!HasFailure()) fs::remove_all(m.dir);
 }
+
+// Issue 20: every number a user gives is finite and in range, or exit 2 naming the option or the
+// file and line/key and the value.
+TEST(CalibrateCli, NumbersMustBeFiniteAndInRange) {
+  const auto dir = test::temp_dir("calibrate-numbers");
+  const std::string d = dir.string() + "/";
+  test::spit(dir / "case.toml", "crs = \"EPSG:32632\"\n[[material]]\nname = \"pool_c\"\nlaw = \"hypoplastic\"\nc_R = 3.0\n");
+  test::spit(dir / "up.csv", "pid,easting,northing,20150601,20150901\nA,4300000,2400000,0,1\n");
+  const std::string base = test::tool("ugs-calibrate") + " --measured " + d +
+                           "up.csv --solver-command 'true {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out ";
+  auto r = test::run(base + "--case " + d + "case.toml --east-weight nan");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "--east-weight: nan (expected a finite number >= 0)")) << r.err;
+  r = test::run(base + "--case " + d + "case.toml --east-weight -1");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "--east-weight: -1 (expected a finite number >= 0)")) << r.err;
+  r = test::run(base + "--case " + d + "case.toml --xtol inf");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "--xtol: inf (expected a finite number in (0, 1])")) << r.err;
+  r = test::run(base + "--case " + d + "case.toml --scan -3");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--scan"), std::string::npos) << r.err;
+  test::spit(dir / "inf.toml", "crs = \"EPSG:32632\"\n[[material]]\nname = \"pool_c\"\nlaw = \"hypoplastic\"\nc_R = inf\n");
+  r = test::run(base + "--case " + d + "inf.toml");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "inf.toml:5: ")) << r.err;  // the case reader's or the parameter's
+  EXPECT_NE(r.err.find("c_R"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("= inf"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  EXPECT_FALSE(fs::exists(dir / "out.cache"));
+  fs::remove_all(dir);
+}
+
+TEST(SampleCli, NonFiniteDisplacementIsRefused) {
+  const Model m = write_model("sample-nan");
+  const std::string d = m.dir.string() + "/";
+  {
+    FieldSeriesWriter w(d + "nan.h5", m.mesh);
+    Field f = kF1.field(m.mesh);
+    for (std::size_t i = 2; i < f.values.size(); i += 3) f.values[i] = std::nan("");  // u_z everywhere
+    const Field f1[] = {kF1.field(m.mesh)};
+    const Field f2[] = {f};
+    w.add_step("2015-05-01", double(*parse_iso_date("2015-05-01")), f1);
+    w.add_step("2015-11-01", double(*parse_iso_date("2015-11-01")), f2);
+    w.commit();
+  }
+  const auto r = test::run(test::tool("ugs-sample") + " --results " + d + "nan.h5 --mesh " + d + "model.msh --points " + d +
+                           "ps.csv --crs EPSG:32632 -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "nan.h5: node field 'u' at step 2015-11-01: top-surface node")) << r.err;
+  EXPECT_NE(r.err.find("has component 2 = nan (expected finite values)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(m.dir / "o.csv"));
+  if (!HasFailure()) fs::remove_all(m.dir);
+}

@@ -347,3 +347,28 @@ TEST(Report, EveryPsPointOffTheModelIsRefused) {
   for (const auto& e : fs::directory_iterator(s.dir)) EXPECT_NE(e.path().filename().string().rfind(".x.tmp", 0), 0u);
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
 }
+
+// Issue 20: numeric options finite and in range (a --raster-cell of 1e-300 overflowed the grid's
+// int counts; inf and nan went through), exit 2 naming the option and the value.
+TEST(Report, NumericOptionsMustBeFiniteAndInRange) {
+  const Synthetic s = make_synthetic("report-numbers");
+  const std::string d = s.dir.string() + "/";
+  const std::string base = test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+                           "case.toml -o " + d + "x ";
+  auto one_line = [](const test::RunResult& r, const std::string& needle) {
+    return r.exit_code == 2 && r.err.rfind("ugs-report: error: " + needle, 0) == 0 && r.err.find('\n') == r.err.size() - 1;
+  };
+  auto r = test::run(base + "--exaggeration inf");
+  EXPECT_TRUE(one_line(r, "--exaggeration: inf (expected a finite number in (0, 1000000])")) << r.err;
+  r = test::run(base + "--reference-pressure-MPa nan");
+  EXPECT_TRUE(one_line(r, "--reference-pressure-MPa: nan (expected a finite number >= 0)")) << r.err;
+  r = test::run(base + "--raster-cell 1e-300");
+  EXPECT_TRUE(one_line(r, "--raster-cell: 1e-300 m gives")) << r.err;
+  r = test::run(base + "--map-extent=-inf/inf/0/1");
+  EXPECT_TRUE(one_line(r, "--map-extent: '-inf/inf/0/1' is not XMIN/XMAX/YMIN/YMAX (finite numbers)")) << r.err;
+  r = test::run(base + "--section-zrange=-2000/-1000x");
+  EXPECT_TRUE(one_line(r, "--section-zrange: '-2000/-1000x' is not ZMIN/ZMAX (finite numbers)")) << r.err;
+  EXPECT_FALSE(fs::exists(s.dir / "x"));
+  for (const auto& e : fs::directory_iterator(s.dir)) EXPECT_NE(e.path().filename().string().rfind(".x.tmp", 0), 0u);
+  if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
+}

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "ugs/cli/tool.hpp"
@@ -110,12 +111,16 @@ int main(int argc, char** argv) {
   app.add_option("--cache-dir", o.cache_dir, "Cache of evaluations (default: <output>.cache)");
   app.add_option("-j,--jobs", o.jobs, "Evaluations run at once")->capture_default_str()->check(CLI::Range(1, 256));
   app.add_flag("--keep-results", o.keep_results, "Keep each evaluation's results file in the cache");
-  app.add_option("--scan", o.scan, "Grid values per parameter before refining (default 5 for one parameter, 3 for more; 0: none)");
+  app.add_option("--scan", o.scan, "Grid values per parameter before refining (default 5 for one parameter, 3 for more; 0: none)")
+      ->check(CLI::Range(0, 100000));
   app.add_option("--xtol", o.xtol, "Stop when steps are below this fraction of each range")->capture_default_str();
   app.add_option("--max-evals", o.max_evals, "Evaluation budget (scan included)")->capture_default_str()->check(CLI::Range(1, 100000));
   std::string& output = tool.add_output("calibration", "Output folder");
   return tool.run(argc, argv, [&] {
-    // 1. Parameters: every path must exist in the case, and both bounds must give a valid case.
+    // 1. Numeric options, then the parameters: every path must exist in the case, and both bounds
+    // must give a valid case.
+    check_option("--east-weight", o.east_weight, 0, std::numeric_limits<double>::max());
+    check_option("--xtol", o.xtol, 0, 1, true);
     check_command_template(o.solver_command, !o.mesh.empty());
     const CaseTemplate tmpl(o.case_file);
     std::vector<ParameterSpec> params;

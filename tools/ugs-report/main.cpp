@@ -19,6 +19,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "report.hpp"
 #include "ugs/cli/tool.hpp"
@@ -124,6 +125,19 @@ int main(int argc, char** argv) {
   app.add_flag("--keep-work", o.keep_work, "Keep the CSV/NPY files handed to plots.py (work/ in the output)");
   std::string& output = tool.add_output("report", "Output folder");
   return tool.run(argc, argv, [&] {
+    // Numeric options: finite and in range, before anything is read.
+    insar::check_option("--reference-pressure-MPa", o.reference_pressure_MPa, 0, std::numeric_limits<double>::max());
+    insar::check_option("--exaggeration", o.exaggeration, 0, 1e6, true);
+    insar::check_option("--raster-cell", o.raster_cell, 0, std::numeric_limits<double>::max());
+    if (!o.section_zrange.empty()) {
+      const auto z = insar::parse_number_list("--section-zrange", o.section_zrange, 2, "ZMIN/ZMAX");
+      if (!(z[0] < z[1])) throw InputError("--section-zrange", fmt::format("'{}': ZMIN is not below ZMAX", o.section_zrange));
+    }
+    if (!o.map_extent.empty()) {
+      const auto e = insar::parse_number_list("--map-extent", o.map_extent, 4, "XMIN/XMAX/YMIN/YMAX");
+      if (!(e[0] < e[1]) || !(e[2] < e[3]))
+        throw InputError("--map-extent", fmt::format("'{}': XMIN/YMIN are not below XMAX/YMAX", o.map_extent));
+    }
     Context c;
     c.opt = o;
     c.command_line = tool.command_line();

@@ -9,6 +9,7 @@
 #include "report.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
+#include "ugs/insar/inputs.hpp"
 #include "ugs/insar/npy.hpp"
 #include "ugs/insar/raster.hpp"
 
@@ -19,11 +20,10 @@ namespace {
 std::array<double, 4> map_extent(const Context& c) {
   const auto e = c.top->extent();
   if (!c.opt.map_extent.empty()) {
-    std::array<double, 4> r{};
-    if (std::sscanf(c.opt.map_extent.c_str(), "%lf/%lf/%lf/%lf", &r[0], &r[1], &r[2], &r[3]) != 4 || !(r[0] < r[1]) ||
-        !(r[2] < r[3]))
-      throw InputError("--map-extent", fmt::format("'{}' is not XMIN/XMAX/YMIN/YMAX", c.opt.map_extent));
-    return r;
+    const auto v = insar::parse_number_list("--map-extent", c.opt.map_extent, 4, "XMIN/XMAX/YMIN/YMAX");
+    if (!(v[0] < v[1]) || !(v[2] < v[3]))
+      throw InputError("--map-extent", fmt::format("'{}': XMIN/YMIN are not below XMAX/YMAX", c.opt.map_extent));
+    return {v[0], v[1], v[2], v[3]};
   }
   if (c.trace_lines.empty()) return e;
   // The trace and as much again on every side (the thesis' maps show the field and its surroundings).

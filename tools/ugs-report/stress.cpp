@@ -11,6 +11,7 @@
 #include "report.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
+#include "ugs/insar/inputs.hpp"
 #include "ugs/insar/npy.hpp"
 #include "ugs/insar/results_mesh.hpp"
 #include "ugs/insar/sections.hpp"
@@ -107,8 +108,10 @@ void build_stress(Context& c) {
   // Section geometry (the same for every phase).
   double zmin = -1e300, zmax = 1e300;
   if (!c.opt.section_zrange.empty()) {
-    if (std::sscanf(c.opt.section_zrange.c_str(), "%lf/%lf", &zmin, &zmax) != 2 || !(zmin < zmax))
-      throw InputError("--section-zrange", fmt::format("'{}' is not ZMIN/ZMAX", c.opt.section_zrange));
+    const auto z = insar::parse_number_list("--section-zrange", c.opt.section_zrange, 2, "ZMIN/ZMAX");
+    zmin = z[0];
+    zmax = z[1];
+    if (!(zmin < zmax)) throw InputError("--section-zrange", fmt::format("'{}': ZMIN is not below ZMAX", c.opt.section_zrange));
   } else if (!in_layer.empty()) {
     double lo = 1e300, hi = -1e300;
     for (std::size_t e = 0; e < tets.size(); ++e)
@@ -190,6 +193,14 @@ void build_stress(Context& c) {
     auto a = cell_field_at(r, c.result_times, field, ph.start, nc);
     const auto b = cell_field_at(r, c.result_times, field, ph.end, nc);
     if (nc < 3) throw InputError(c.opt.results, fmt::format("cell field '{}' has {} components, expected 6", field, nc));
+    for (const std::vector<double>* v : {static_cast<const std::vector<double>*>(&a), &b})
+      for (std::size_t e = 0; e < tets.size(); ++e)
+        for (int k = 0; k < 3; ++k)
+          if (!std::isfinite((*v)[(row0 + e) * nc + k]))
+            throw InputError(c.opt.results, fmt::format("cell field '{}' at {}: tetrahedron {} has component {} = {} (expected "
+                                                        "finite values)", field,
+                                                        format_iso_date(v == &b ? ph.end : ph.start), e, k,
+                                                        (*v)[(row0 + e) * nc + k]));
     for (std::size_t i = 0; i < a.size(); ++i) a[i] = b[i] - a[i];
     auto change = [&](std::size_t e, int k) { return a[(row0 + e) * nc + k] / norm; };
     for (int k = 0; k < 3; ++k) {

@@ -138,6 +138,9 @@ const toml::value& lookup(const toml::value& root, const std::string& path, cons
     so_far = here;
   }
   if (!cur->is_floating() && !cur->is_integer()) throw missing("it is not a number");
+  if (cur->is_floating() && !std::isfinite(cur->as_floating()))
+    throw InputError(fmt::format("{}:{}", file, cur->location().line()),
+                     fmt::format("'{}' = {} (expected a finite number)", path, cur->as_floating()));
   return *cur;
 }
 

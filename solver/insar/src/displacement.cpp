@@ -88,7 +88,14 @@ const std::vector<double>& SurfaceDisplacement::at_step(std::size_t step) {
     throw InputError(reader_->path(), fmt::format("node field '{}' has {} components, expected 3", field_, f.components));
   c.resize(rows_.size() * 3);
   for (std::size_t k = 0; k < rows_.size(); ++k)
-    for (int j = 0; j < 3; ++j) c[3 * k + j] = scale_ * f.values[3 * std::size_t(rows_[k]) + j];
+    for (int j = 0; j < 3; ++j) {
+      const double v = f.values[3 * std::size_t(rows_[k]) + j];
+      if (!std::isfinite(v))
+        throw InputError(reader_->path(), fmt::format("node field '{}' at step {}: top-surface node {} has component {} = {} "
+                                                      "(expected finite values)", field_, reader_->steps()[step].date,
+                                                      surface_.node_tags[k], j, v));
+      c[3 * k + j] = scale_ * v;
+    }
   return c;
 }
 

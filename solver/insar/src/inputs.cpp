@@ -1,5 +1,11 @@
 #include "ugs/insar/inputs.hpp"
 
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/formats/toml_reader.hpp"
@@ -13,6 +19,40 @@ std::string model_crs(const std::string& crs, const std::string& case_path) {
   const TomlTable t = TomlTable::parse_file(case_path);
   if (auto c = t.string_opt("crs")) return any_crs_wkt(*c, t.where("crs"));
   return "";
+}
+
+void check_option(const std::string& option, double v, double lo, double hi, bool lo_open) {
+  const bool ok = std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi;
+  if (ok) return;
+  std::string range;
+  if (hi == std::numeric_limits<double>::max())
+    range = fmt::format("{} {}", lo_open ? ">" : ">=", lo);
+  else
+    range = fmt::format("in {}{}, {}]", lo_open ? "(" : "[", lo, hi);
+  throw InputError(option, fmt::format("{} (expected a finite number {})", v, range));
+}
+
+std::vector<double> parse_number_list(const std::string& option, const std::string& text, std::size_t count,
+                                      const std::string& format) {
+  std::vector<double> out;
+  std::string_view rest = text;
+  bool ok = true;
+  while (ok) {
+    const auto slash = rest.find('/');
+    std::string_view part = rest.substr(0, slash);
+    while (!part.empty() && part.front() == ' ') part.remove_prefix(1);
+    while (!part.empty() && part.back() == ' ') part.remove_suffix(1);
+    if (!part.empty() && part.front() == '+') part.remove_prefix(1);
+    double v = 0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+    ok = !part.empty() && ec == std::errc() && end == part.data() + part.size() && std::isfinite(v);
+    out.push_back(v);
+    if (slash == std::string_view::npos) break;
+    rest.remove_prefix(slash + 1);
+  }
+  if (!ok || out.size() != count)
+    throw InputError(option, fmt::format("'{}' is not {} (finite numbers)", text, format));
+  return out;
 }
 
 TopSurface load_top_surface(const std::string& mesh_path, const std::string& group, const std::string& results_path) {

@@ -229,8 +229,13 @@ PsData read_ogr_points(const std::string& path, const PsReadOptions& o) {
         throw InputError(p.where, fmt::format("is a {}, not a point", g->getGeometryName()));
       p.x = g->toPoint()->getX();
       p.y = g->toPoint()->getY();
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        throw InputError(p.where, fmt::format("coordinates ({}, {}) are not finite", p.x, p.y));
       p.id = idfield >= 0 && f->IsFieldSetAndNotNull(idfield) ? f->GetFieldAsString(idfield) : std::to_string(f->GetFID());
-      if (hfield >= 0 && f->IsFieldSetAndNotNull(hfield)) p.height = f->GetFieldAsDouble(hfield);
+      if (hfield >= 0 && f->IsFieldSetAndNotNull(hfield)) {
+        p.height = f->GetFieldAsDouble(hfield);
+        if (!std::isfinite(*p.height)) throw InputError(p.where, fmt::format("height {} is not finite", *p.height));
+      }
       d.points.push_back(std::move(p));
     }
   }
