@@ -14,10 +14,13 @@ Pool C deck, the import, the two ugs-solve runs and the comparison. Checks:
     down on production (2003-11 -> 2004-04), from the simulator's pressures and from the flow model,
     and the two agree within a factor of 2 at the end of injection.
 """
-import os
+import sys
+
+sys.dont_write_bytecode = True   # keep data-samples/po-plain/opm free of __pycache__
+
+import os  # noqa: E402
 import shutil
 import subprocess
-import sys
 import time
 
 import h5py
