@@ -317,6 +317,13 @@ TEST(CalibrateCli, CacheKeyCoversPointPositions) {
     EXPECT_TRUE(fs::exists(e.path() / "timing.txt"));
   }
   EXPECT_EQ(entries, 8u);  // 2 values x (up1, up2, up3, up1 with other results)
+  // Without --mesh (each result's own surface) the point off the model is named too.
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d + "up3.csv" +
+                " --param material.pool_c.c_R=2:6 --scan 2 --max-evals 2 --solver-command 'cp " + d +
+                "run.h5 {out} && test -s {case}' --cache-dir " + d + "cache -o " + d + "out5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("PS 'B' lies outside the results' top surface: left out of the misfit"), std::string::npos) << r.err;
+  EXPECT_EQ(values_of(m.dir / "out5" / "misfit_points.csv", "B", "rms_mm"), "");
   if (!HasFailure()) fs::remove_all(m.dir);
 }
 

@@ -299,6 +299,10 @@ int main(int argc, char** argv) {
     const OptimizerResult best = optimize(ev, params, oo);
     if (!best.converged) cli::warning("the optimizer stopped before converging: {}", best.stop_reason);
     const Evaluation& be = ev.history()[best.best_index];
+    if (!mesh_top)  // located on each results file's own surface: say which points it left out
+      for (const auto& p : all_points)
+        if (!ev.series_of(be).has(p.id))
+          cli::warning("PS '{}' lies outside the results' top surface: left out of the misfit", p.id);
 
     // 6. Outputs, all at once.
     {
@@ -335,7 +339,7 @@ int main(int argc, char** argv) {
     {
       std::vector<std::string> cols{"evaluation", "phase"};
       for (const auto& p : params) cols.push_back(p.name);
-      for (const std::string c : {"rms_mm", "cached", "entry"}) cols.push_back(c);  // timings: cache index.csv
+      for (const std::string c : {"rms_mm", "cached", "entry"}) cols.push_back(c);  // timings: stderr, cache timing.txt
       CsvWriter w(out.file("profile.csv"), cols);
       for (const auto& e : ev.history()) {
         w.integer(static_cast<std::int64_t>(e.index)).text(e.phase);
