@@ -27,6 +27,12 @@ sys.path.insert(0, HERE)
 import eclbin  # noqa: E402
 
 
+def fail(msg):
+    """Bad input: one line on stderr, exit 2 (docs/cli.md)."""
+    print(msg, file=sys.stderr)
+    sys.exit(2)
+
+
 def inside(ring, x, y):
     """Even-odd rule: which points (x, y) lie inside the closed ring."""
     res = np.zeros(len(x), bool)
@@ -50,7 +56,7 @@ def top_series(path, mask_of):
             uz = s["node/u_mm"][:, 2][m]
             out[d] = uz
     if not m.any():
-        sys.exit("compare.py: %s: no top-surface node inside Pool C's trace" % path)
+        fail("compare.py: %s: no top-surface node inside Pool C's trace" % path)
     return out
 
 
@@ -67,16 +73,19 @@ def main():
                          if ft["properties"]["name"] == "Pool C"][0]["geometry"]["coordinates"][0])
     with open(os.path.join(SAMPLE, "pressure_pool_c.csv")) as f:
         twin = {c[0]: float(c[2]) for c in (line.strip().split(",") for line in f) if c[0][:1].isdigit()}
-    steps = eclbin.restart_steps(a.restart)
-    sgas = [x for n, x in eclbin.read(a.restart) if n == "SGAS"]
+    try:
+        steps = eclbin.restart_steps(a.restart)
+        sgas = [x for n, x in eclbin.read(a.restart) if n == "SGAS"]
+    except (OSError, ValueError) as e:
+        fail("compare.py: %s" % e)
     if not steps or len(sgas) != len(steps):
-        sys.exit("compare.py: %s: no PRESSURE/SGAS report steps" % a.restart)
+        fail("compare.py: %s: no PRESSURE/SGAS report steps" % a.restart)
     gas = sgas[0] > 0.3
     d0, p0 = steps[0]
     opm = top_series(a.opm, lambda x, y: inside(ring, x, y))
     flo = top_series(a.flow, lambda x, y: inside(ring, x, y))
     if d0 not in opm or d0 not in flo:
-        sys.exit("compare.py: the start date %s is not in both top-surface files" % d0)
+        fail("compare.py: the start date %s is not in both top-surface files" % d0)
     rows = []
     for d, p in steps:
         if d not in opm or d not in flo:
@@ -85,7 +94,7 @@ def main():
         rows.append((d, 0.1 * (p[gas].mean() - p0[gas].mean()), twin[d] - twin[d0],
                      uo.mean(), uo[np.argmax(np.abs(uo))], uf.mean(), uf[np.argmax(np.abs(uf))]))
     if len(rows) < 2:
-        sys.exit("compare.py: fewer than two common dates in %s and %s" % (a.opm, a.flow))
+        fail("compare.py: fewer than two common dates in %s and %s" % (a.opm, a.flow))
     head = ["date", "dp_opm_gas_MPa", "dp_schedule_MPa", "uz_opm_mean_mm", "uz_opm_peak_mm",
             "uz_flow_mean_mm", "uz_flow_peak_mm"]
     tmp = a.output + ".part"

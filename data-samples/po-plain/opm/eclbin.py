@@ -17,7 +17,7 @@ def read(path):
     pos, out = 0, []
     while pos < len(buf):
         n = int.from_bytes(buf[pos:pos + 4], "big")
-        if n != 16:
+        if n != 16 or pos + 24 > len(buf):
             raise ValueError("%s: byte %d: not an array header" % (path, pos))
         name = buf[pos + 4:pos + 12].decode().strip()
         count = int.from_bytes(buf[pos + 12:pos + 16], "big", signed=True)
@@ -30,6 +30,8 @@ def read(path):
         left = count
         while left > 0:
             m = int.from_bytes(buf[pos:pos + 4], "big")
+            if m == 0 or pos + m + 8 > len(buf) or int.from_bytes(buf[pos + 4 + m:pos + 8 + m], "big") != m:
+                raise ValueError("%s: %s: truncated or damaged record at byte %d" % (path, name, pos))
             parts.append(np.frombuffer(buf[pos + 4:pos + 4 + m], dtype=dt))
             pos += m + 8
             left -= len(parts[-1])

@@ -28,6 +28,7 @@ import numpy as np  # noqa: E402
 from osgeo import gdal  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+
 SAMPLE = os.path.dirname(HERE)
 START = datetime.date(2003, 4, 1)
 GWC = 1575.0          # m below sea level: the gas-water contact of Pool C's trace
@@ -39,10 +40,16 @@ PROD_RATE = 7.0e6
 WELLS = (("C1", -600.0, 0.0), ("C2", 0.0, 0.0), ("C3", 600.0, 0.0))   # offsets from the crest, m
 
 
+def fail(msg):
+    """Bad input: one line on stderr, exit 2 (docs/cli.md)."""
+    print(msg, file=sys.stderr)
+    sys.exit(2)
+
+
 def raster(name):
     d = gdal.Open(os.path.join(SAMPLE, "surfaces", name))
     if d is None:
-        sys.exit("make_deck.py: cannot read surfaces/%s" % name)
+        fail("make_deck.py: cannot read surfaces/%s" % name)
     return d.ReadAsArray().astype(float), d.GetGeoTransform()
 
 
@@ -63,7 +70,7 @@ def twin_pressure(date):
             c = line.strip().split(",")
             if c[0] == date.isoformat():
                 return float(c[2])
-    sys.exit("make_deck.py: pressure_pool_c.csv has no %s" % date)
+    fail("make_deck.py: pressure_pool_c.csv has no %s" % date)
 
 
 def main():
@@ -73,6 +80,9 @@ def main():
     ap.add_argument("--layers", type=int, default=3)
     ap.add_argument("--years", type=int, default=2)
     a = ap.parse_args()
+    if not (50.0 <= a.cell <= 2000.0) or not (1 <= a.layers <= 20) or not (1 <= a.years <= 30):
+        fail("make_deck.py: --cell %g --layers %d --years %d (expected 50..2000 m, 1..20 layers, "
+                 "1..30 years)" % (a.cell, a.layers, a.years))
 
     with open(os.path.join(SAMPLE, "reservoir_traces.geojson")) as f:
         trace = [ft for ft in json.load(f)["features"] if ft["properties"]["name"] == "Pool C"][0]
