@@ -188,6 +188,11 @@ extern "C" void cleanup_on_signal(int sig) {
 }
 }  // namespace
 
+void remove_uncommitted_outputs() {
+  for (int i = 0; i < kMaxTmp; ++i)
+    if (g_tmp_used[i]) ::unlink(g_tmp_paths[i]);
+}
+
 void install_output_cleanup_handlers() {
   std::signal(SIGINT, cleanup_on_signal);
   std::signal(SIGTERM, cleanup_on_signal);

@@ -554,10 +554,61 @@ private:
 
 }  // namespace
 
+namespace {
+double polygon_area_of(const geo::Polygon& p) {
+  const auto outer = clean_ring(p.outer);
+  if (outer.size() < 3) return 0;
+  double a = std::abs(signed_area(outer));
+  for (const auto& h : p.holes)
+    if (const auto r = clean_ring(h); r.size() >= 3) a -= std::abs(signed_area(r));
+  return std::max(a, 0.0);
+}
+double ring_length(const std::vector<XY>& r, bool closed) {
+  double L = 0;
+  for (std::size_t i = 0; i + 1 < r.size(); ++i) L += std::hypot(r[i + 1][0] - r[i][0], r[i + 1][1] - r[i][1]);
+  if (closed && r.size() > 2) L += std::hypot(r.front()[0] - r.back()[0], r.front()[1] - r.back()[1]);
+  return L;
+}
+}  // namespace
+
+PlanEstimate estimate_plan_triangles(const PlanSpec& s) {
+  PlanEstimate e;
+  e.smallest_size = s.hmax;
+  e.smallest_where = "the far field (hmax)";
+  double integral = 0;  // of 1 / h^2 over the plan
+  for (const auto& p : s.domain) integral += polygon_area_of(p) / (s.hmax * s.hmax);
+  auto band = [&](double length, double size) { return length / s.grading * (1.0 / size - 1.0 / s.hmax); };
+  for (const auto& r : s.regions) {
+    if (!(r.size > 0) || r.size >= s.hmax) continue;
+    for (const auto& p : r.polygons) {
+      double perimeter = ring_length(p.outer, true);
+      for (const auto& h : p.holes) perimeter += ring_length(h, true);
+      integral += polygon_area_of(p) / (r.size * r.size) + band(perimeter, r.size);
+    }
+    if (r.size < e.smallest_size) e.smallest_size = r.size, e.smallest_where = "region '" + r.name + "'";
+  }
+  for (const auto& l : s.lines) {
+    if (!(l.size > 0) || l.size >= s.hmax) continue;
+    for (const auto& pl : l.lines) integral += band(2 * ring_length(pl, false), l.size);
+    if (l.size < e.smallest_size) e.smallest_size = l.size, e.smallest_where = "line " + l.group;
+  }
+  e.triangles = kTrianglesPerSquare * integral;
+  return e;
+}
+
 Mesh make_plan_mesh(const PlanSpec& spec, PlanMeshStats* stats) {
   if (!(spec.hmax > 0) || !std::isfinite(spec.hmax)) throw InputError("", "hmax must be a size in metres, > 0");
   if (!(spec.grading > 0) || !std::isfinite(spec.grading)) throw InputError("", "grading must be > 0");
   if (spec.domain.empty()) throw InputError("", "the domain is empty");
+  // Refuse before meshing what would not fit in memory (a size of 1e-9 m grew gmsh's memory without
+  // bound until std::bad_alloc).
+  if (const PlanEstimate est = estimate_plan_triangles(spec); !(est.triangles <= spec.max_triangles))
+    throw InputError("--max-elements",
+                     fmt::format("the sizes ask for about {:.3g} triangles (estimate: {:.4g} x the integral of 1/size^2 "
+                                 "over the plan), more than the limit of {:.0f}: the smallest size is {:g} m ({}); use "
+                                 "larger sizes or raise --max-elements",
+                                 est.triangles, kTrianglesPerSquare, spec.max_triangles, est.smallest_size,
+                                 est.smallest_where));
   GmshSession session(spec.gmsh_messages);
   try {
     return PlanMesher(spec).run(stats);

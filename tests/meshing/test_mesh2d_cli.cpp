@@ -279,3 +279,43 @@ TEST_F(Mesh2dCli, GeoJsonWithoutCrsSaysSo) {
   expect_bad("--crs EPSG:32632 --box 680000/686000/4950000/4954000 --hmax 800 --fault " + p("nocrs.geojson").string(), want);
   expect_bad("--domain " + p("nocrs.geojson").string(), want);
 }
+
+// Issue 20: a tiny refinement size (1e-9 m, 0.001 m) grew memory without bound until SIGABRT. The
+// triangle count the sizes ask for is estimated before meshing and refused above --max-elements
+// (default 20 million) with the estimate; std::bad_alloc anywhere is exit 1, one line, no output.
+TEST_F(Mesh2dCli, TinySizesAreRefusedBeforeMeshing) {
+  const std::string box = "--box 680000/686000/4950000/4954000 --hmax 800 --refine " + p("refine.geojson").string();
+  for (const char* size : {"0.001", "1e-9"}) {
+    test::write_vector(p("tiny.geojson").string(),
+                       {{"tiny", "POLYGON ((682000 4951000, 684000 4951000, 684000 4952500, 682000 4952500, 682000 4951000))",
+                         {{"size_m", std::stod(size)}}}});
+    expect_bad("--box 680000/686000/4950000/4954000 --hmax 800 --refine " + p("tiny.geojson").string(),
+               fmt::format("more than the limit of 20000000: the smallest size is {:g} m (region 'tiny')", std::stod(size)));
+  }
+  // The estimate of the 100 m refinement: 3e6 m2 / 100^2 plus its graded band and the far field,
+  // times 4 / sqrt(3), within a factor of 2 of what gmsh makes; a limit below it refuses.
+  const auto out = p("plan.msh");
+  const auto r = test::run(tool() + " -v " + box + " -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, std::regex("estimated ([0-9.e+]+) triangles"))) << r.err;
+  const double estimate = std::stod(m[1]);
+  const double made = static_cast<double>(read_msh(out.string()).count(ElementType::Triangle));
+  EXPECT_GT(estimate, 0.5 * made);
+  EXPECT_LT(estimate, 2.0 * made);
+  expect_bad(box + " --max-elements " + std::to_string(static_cast<long>(estimate / 2)), "--max-elements: the sizes ask for about");
+}
+
+TEST_F(Mesh2dCli, OutOfMemoryIsExitOneWithOneLine) {
+  // A 0.5 m refinement with the limit lifted, in 420 MB of address space: gmsh runs out of memory.
+  test::write_vector(p("small.geojson").string(),
+                     {{"small", "POLYGON ((682000 4951000, 684000 4951000, 684000 4952500, 682000 4952500, 682000 4951000))",
+                       {{"size_m", 0.5}}}});
+  const auto out = p("oom.msh");
+  const auto r = test::run("ulimit -v 420000; " + tool() + " -q --box 680000/686000/4950000/4954000 --hmax 800 --refine " +
+                           p("small.geojson").string() + " --max-elements 1e15 -o " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err, "ugs-mesh2d: error: out of memory while meshing the plan with gmsh\n");
+  EXPECT_FALSE(fs::exists(out));
+  for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}

@@ -368,3 +368,22 @@ TEST_F(MeshgenCli, HelpAndMissingFiles) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--strata"), std::string::npos) << r.err;
 }
+
+// Issue 20: sub-layer counts are estimated before building: 3 tetrahedra per plan triangle and
+// sub-layer above --max-elements is refused (exit 2, the estimate in the message); raising the
+// limit lets the same input through.
+TEST_F(MeshgenCli, ElementEstimateAboveTheLimitIsRefused) {
+  const auto plan = read_msh(path("plan.msh").string());
+  const std::size_t triangles = plan.count(ElementType::Triangle);
+  const auto out = path("big.msh");
+  const std::string cmd = meshgen() + " " + path("plan.msh").string() + " --strata " + path("strata.toml").string();
+  const auto r = test::run(cmd + " --max-elements 1000 -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(fmt::format("ugs-meshgen: error: --max-elements: {} plan triangles x ", triangles)), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("more than the limit of 1000"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  ASSERT_EQ(test::run(cmd + " -q --max-elements 1e7 -o " + out.string()).exit_code, 0);
+  EXPECT_GT(read_msh(out.string()).count(ElementType::Tetrahedron), 1000u);
+}

@@ -134,6 +134,7 @@ int main(int argc, char** argv) {
     }
 
     // 2. Insertion.
+    ugs::cli::Activity activity("inserting the faults");
     t = clock::now();
     ins.only = only;
     const ugs::FaultInsertReport rep = ugs::insert_faults(mesh, ins);

@@ -222,6 +222,7 @@ void run(const Options& o, cli::Tool& tool) {
   std::string influx_path = o.influx;
   if (influx_path.empty())
     influx_path = (out.size() > 3 && out.ends_with(".h5") ? out.substr(0, out.size() - 3) : out) + "_influx.csv";
+  cli::Activity activity("solving the flow");
   FieldSeriesWriter writer(out, mesh);
   flowtool::AsyncSeriesWriter async(writer);
   cli::Progress progress("flow", grid.dates.size() - 1);

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <sstream>
 
 #include "ugs/cli/tool.hpp"
@@ -23,6 +24,7 @@ struct Options {
   std::string box;
   std::string algorithm = "frontal-delaunay";
   bool ascii = false;
+  double max_elements = 20e6;
 };
 
 std::array<double, 4> parse_box(const std::string& s) {
@@ -74,6 +76,9 @@ int main(int argc, char** argv) {
   app.add_option("--algorithm", opt.algorithm, "gmsh 2D algorithm: frontal-delaunay, delaunay, meshadapt")
       ->check(CLI::IsMember({"frontal-delaunay", "delaunay", "meshadapt"}))
       ->capture_default_str();
+  app.add_option("--max-elements", opt.max_elements,
+                 "Refuse sizes whose estimated triangle count (docs/meshing.md) is above this")
+      ->capture_default_str();
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH (default: binary)");
   tool.add_output("-", "Plan mesh (MSH 4.1)");
 
@@ -93,6 +98,12 @@ int main(int argc, char** argv) {
     for (const auto& w : loaded.warnings) ugs::cli::warning("{}", w);
     loaded.spec.algorithm = opt.algorithm == "delaunay" ? 5 : opt.algorithm == "meshadapt" ? 1 : 6;
     loaded.spec.gmsh_messages = ugs::cli::verbosity() >= 2;
+    if (!(opt.max_elements > 0) || !std::isfinite(opt.max_elements))
+      throw ugs::InputError("--max-elements", fmt::format("must be a positive count, got {}", opt.max_elements));
+    loaded.spec.max_triangles = opt.max_elements;
+    ugs::cli::detail("estimated {:.3g} triangles (limit {:.0f})", ugs::estimate_plan_triangles(loaded.spec).triangles,
+                     opt.max_elements);
+    ugs::cli::Activity activity("meshing the plan with gmsh");
 
     ugs::PlanMeshStats stats;
     ugs::Mesh mesh = ugs::make_plan_mesh(loaded.spec, &stats);

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
@@ -29,6 +30,7 @@ struct Options {
   std::string faults;
   double small_angle = 5.0;
   bool ascii = false;
+  double max_elements = 50e6;
 };
 
 class Stopwatch {
@@ -63,6 +65,10 @@ int main(int argc, char** argv) {
                  "(docs/dipping-faults.md)");
   app.add_option("--small-angle", opt.small_angle, "Report tetrahedra with a dihedral angle below this (degrees)")
       ->capture_default_str();
+  app.add_option("--max-elements", opt.max_elements,
+                 "Refuse a mesh of more tetrahedra than this (estimated before building: 3 per plan triangle and "
+                 "sub-layer)")
+      ->capture_default_str();
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH (default: binary)");
   tool.add_output("-", "Layered mesh (MSH 4.1)");
 
@@ -80,6 +86,23 @@ int main(int argc, char** argv) {
     double t = clock.lap(), total = t;
     ugs::cli::detail("plan: {} columns, {} triangles, {} line groups (read in {:.3f} s)", plan.num_columns(),
                      plan.triangles.size(), plan.lines.size(), t);
+    // Refuse before building what would not fit in memory: 3 tetrahedra per plan triangle and sub-layer
+    // (pinch-outs only remove some).
+    {
+      if (!(opt.max_elements > 0) || !std::isfinite(opt.max_elements))
+        throw ugs::InputError("--max-elements", fmt::format("must be a positive count, got {}", opt.max_elements));
+      double layers = 0;
+      for (const auto& u : strata.units) layers += u.layers;
+      const double tets = 3.0 * static_cast<double>(plan.triangles.size()) * layers;
+      ugs::cli::detail("at most {:.3g} tetrahedra (limit {:.0f})", tets, opt.max_elements);
+      if (tets > opt.max_elements)
+        throw ugs::InputError("--max-elements",
+                              fmt::format("{} plan triangles x {:.0f} sub-layers ({}) ask for up to {:.3g} tetrahedra (3 per "
+                                          "prism), more than the limit of {:.0f}: use fewer sub-layers or a coarser plan, or "
+                                          "raise --max-elements",
+                                          plan.triangles.size(), layers, opt.strata, tets, opt.max_elements));
+    }
+    ugs::cli::Activity activity("building the layered mesh");
 
     ugs::PreparedModel model = ugs::prepare_model(strata, plan);
     for (const auto& n : model.notes) ugs::cli::detail("{}", n);

@@ -2,8 +2,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
 #include <iostream>
 #include <new>
 
@@ -40,7 +44,42 @@ public:
 private:
   std::string example_;
 };
+
+// The activity in a fixed buffer: the terminate handler prints it without allocating.
+char g_activity[256] = "running";
+
+void set_activity(const std::string& what) {
+  const std::size_t n = std::min(what.size(), sizeof g_activity - 1);
+  std::memcpy(g_activity, what.data(), n);
+  g_activity[n] = '\0';
+}
+
+// std::bad_alloc (or any exception) escaping where it cannot be caught (a noexcept function, a
+// library's thread) ended in SIGABRT: one line and exit 1 instead, temporary outputs removed.
+[[noreturn]] void on_terminate() {
+  bool oom = false;
+  const char* what = "std::terminate called";
+  if (std::exception_ptr e = std::current_exception()) {
+    try {
+      std::rethrow_exception(e);
+    } catch (const std::bad_alloc&) {
+      oom = true;
+    } catch (const std::exception& x) {
+      what = x.what();
+    } catch (...) {
+      what = "unknown exception";
+    }
+  }
+  remove_uncommitted_outputs();
+  if (oom) std::fprintf(stderr, "%s: error: out of memory while %s\n", g_tool.c_str(), g_activity);
+  else std::fprintf(stderr, "%s: error: internal error: %s\n", g_tool.c_str(), what);
+  std::fflush(stderr);
+  std::_Exit(1);
+}
 }  // namespace
+
+Activity::Activity(const std::string& what) : previous_(g_activity) { set_activity(what); }
+Activity::~Activity() { set_activity(previous_); }
 
 int verbosity() { return g_verbosity; }
 void set_verbosity(int v) { g_verbosity = v; }
@@ -69,6 +108,7 @@ std::string& Tool::add_output(const std::string& default_path, const std::string
 int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   for (int i = 0; i < argc; ++i) command_line_ += (i ? " " : "") + quote_arg(argv[i]);
   install_output_cleanup_handlers();
+  std::set_terminate(on_terminate);
   try {
     app_.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -97,7 +137,7 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), e.what());
     return 1;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: error: out of memory\n", g_tool.c_str());
+    std::fprintf(stderr, "%s: error: out of memory while %s\n", g_tool.c_str(), g_activity);
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: internal error: %s\n", g_tool.c_str(), e.what());

@@ -89,5 +89,7 @@ private:
 
 // Removes every uncommitted temporary output on SIGINT/SIGTERM/SIGPIPE (installed by the CLI layer).
 void install_output_cleanup_handlers();
+// Removes every uncommitted temporary output now (async-signal-safe: for std::terminate handlers).
+void remove_uncommitted_outputs();
 
 }  // namespace ugs

@@ -40,6 +40,19 @@ private:
   std::string command_line_;
 };
 
+// What the tool is doing, for "out of memory while <activity>" (Tool::run; also when std::bad_alloc
+// escapes where it cannot be caught, e.g. inside gmsh, through std::terminate). Restored on exit.
+class Activity {
+public:
+  explicit Activity(const std::string& what);
+  ~Activity();
+  Activity(const Activity&) = delete;
+  Activity& operator=(const Activity&) = delete;
+
+private:
+  std::string previous_;
+};
+
 // Verbosity: -q gives -1, default 0, each -v adds one.
 int verbosity();
 void set_verbosity(int v);
