@@ -136,7 +136,8 @@ CaseFile read_case_file(const std::string& path) {
       throw w->error("compressibility_per_MPa", fmt::format("must not be negative, got {}", c.water_compressibility * kMPa));
   }
   if (auto s = root.table_opt("initial_stress")) {
-    s->reject_unknown({"surface_elevation_m", "lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0"});
+    s->reject_unknown({"surface_elevation_m", "lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0", "k_Hmax",
+                       "k_hmin", "Hmax_azimuth_deg"});
     auto& is = c.initial_stress;
     is.surface_elevation = s->number_or("surface_elevation_m", 0.0);
     is.lithostatic_gradient = positive(*s, "lithostatic_gradient_MPa_per_m", s->number_or("lithostatic_gradient_MPa_per_m", 0.0226)) * kMPa;
@@ -144,6 +145,17 @@ CaseFile read_case_file(const std::string& path) {
     if (is.hydrostatic_gradient < 0 || is.hydrostatic_gradient >= is.lithostatic_gradient)
       throw s->error("hydrostatic_gradient_MPa_per_m", "must lie in [0, lithostatic gradient)");
     is.k0 = positive(*s, "k0", s->number_or("k0", 1.0));
+    // k0 is the shorthand for k_Hmax = k_hmin = k0: both forms at once would leave one unused.
+    for (const char* key : {"k_Hmax", "k_hmin"})
+      if (s->has(key) && s->has("k0"))
+        throw s->error(key, fmt::format("{} given together with k0 = {} (k0 is the shorthand for k_Hmax = k_hmin; give one "
+                                        "form)", s->number(key), is.k0));
+    if (s->has("k_Hmax")) is.k_Hmax = positive(*s, "k_Hmax", s->number("k_Hmax"));
+    if (s->has("k_hmin")) is.k_hmin = positive(*s, "k_hmin", s->number("k_hmin"));
+    is.Hmax_azimuth_deg = s->number_or("Hmax_azimuth_deg", 0.0);
+    if (!(is.Hmax_azimuth_deg >= 0 && is.Hmax_azimuth_deg < 360))
+      throw s->error("Hmax_azimuth_deg", fmt::format("{} is outside [0, 360) degrees (clockwise from north, the mesh's +y axis)",
+                                                     is.Hmax_azimuth_deg));
   }
   std::set<std::string> names;
   for (const auto& t : root.tables("material")) {

@@ -90,3 +90,46 @@ TEST(CaseFile, DirectoryIsNamedAsSuch) {
   }
   fs::remove_all(dir);
 }
+
+// Issue 21: the general in-situ stress. k_Hmax, k_hmin, Hmax_azimuth_deg are read; k0 stays the
+// shorthand for k_Hmax = k_hmin; bad ratios, azimuths and both forms at once are refused.
+namespace {
+CaseFile parse(const std::string& toml) {
+  const auto dir = test::temp_dir("case");
+  test::spit(dir / "c.toml", toml);
+  CaseFile c = read_case_file((dir / "c.toml").string());
+  fs::remove_all(dir);
+  return c;
+}
+}  // namespace
+
+TEST(CaseFile, InsituStressRatiosAndAzimuth) {
+  const CaseFile a = parse("[initial_stress]\nk_Hmax = 1.3\nk_hmin = 0.9\nHmax_azimuth_deg = 10\n");
+  EXPECT_EQ(a.initial_stress.kH(), 1.3);
+  EXPECT_EQ(a.initial_stress.kh(), 0.9);
+  EXPECT_EQ(a.initial_stress.Hmax_azimuth_deg, 10.0);
+  const CaseFile b = parse("[initial_stress]\nk0 = 0.7\n");
+  EXPECT_EQ(b.initial_stress.kH(), 0.7);
+  EXPECT_EQ(b.initial_stress.kh(), 0.7);
+  EXPECT_EQ(b.initial_stress.Hmax_azimuth_deg, 0.0);
+  const CaseFile c = parse("[initial_stress]\nk_Hmax = 1.2\n");  // the other ratio: 1 (k0's default)
+  EXPECT_EQ(c.initial_stress.kH(), 1.2);
+  EXPECT_EQ(c.initial_stress.kh(), 1.0);
+}
+
+TEST(CaseFile, InsituStressBadInput) {
+  auto tail = [](const std::string& e) { return e.substr(e.find("c.toml:")); };
+  EXPECT_EQ(tail(error_of("[initial_stress]\nk_Hmax = 1.3\nk_hmin = 0\n")), "c.toml:3: 'initial_stress.k_hmin': must be positive, got 0");
+  EXPECT_EQ(tail(error_of("[initial_stress]\nk_Hmax = -1.3\n")), "c.toml:2: 'initial_stress.k_Hmax': must be positive, got -1.3");
+  EXPECT_EQ(tail(error_of("[initial_stress]\nk_hmin = nan\n")), "c.toml:2: initial_stress.k_hmin = nan is not a finite number");
+  EXPECT_EQ(tail(error_of("[initial_stress]\nk0 = 0.8\nk_Hmax = 1.3\n")),
+            "c.toml:3: 'initial_stress.k_Hmax': 1.3 given together with k0 = 0.8 (k0 is the shorthand for k_Hmax = k_hmin; "
+            "give one form)");
+  EXPECT_EQ(tail(error_of("[initial_stress]\nk_hmin = 0.9\nk0 = 0.8\n")),
+            "c.toml:2: 'initial_stress.k_hmin': 0.9 given together with k0 = 0.8 (k0 is the shorthand for k_Hmax = k_hmin; "
+            "give one form)");
+  for (const std::string v : {"360", "-5", "400.5"})
+    EXPECT_EQ(tail(error_of("[initial_stress]\nHmax_azimuth_deg = " + v + "\n")),
+              "c.toml:2: 'initial_stress.Hmax_azimuth_deg': " + v +
+                  " is outside [0, 360) degrees (clockwise from north, the mesh's +y axis)");
+}

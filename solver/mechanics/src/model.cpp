@@ -56,7 +56,10 @@ std::string group_list(const Mesh& mesh) {
 fem::Vec6 InitialState::effective_stress(double z, double biot) const {
   const double d = std::max(surface_elevation - z, 0.0);
   const double sv = -(lithostatic - biot * hydrostatic) * d;
-  return {k0 * sv, k0 * sv, sv, 0, 0, 0};
+  if (k_Hmax == k_hmin) return {k_hmin * sv, k_hmin * sv, sv, 0, 0, 0};  // isotropic horizontally (k0): exactly as before
+  const double a = Hmax_azimuth_deg * M_PI / 180.0, sa = std::sin(a), ca = std::cos(a);
+  const double sH = k_Hmax * sv, sh = k_hmin * sv;
+  return {sH * sa * sa + sh * ca * ca, sH * ca * ca + sh * sa * sa, sv, 0, 0, (sH - sh) * sa * ca};
 }
 
 double InitialState::pore_pressure(double z) const { return hydrostatic * std::max(surface_elevation - z, 0.0); }
@@ -207,7 +210,7 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
   }
 
   const auto& is = cs.initial_stress;
-  model.initial = {is.surface_elevation, is.lithostatic_gradient, is.hydrostatic_gradient, is.k0};
+  model.initial = {is.surface_elevation, is.lithostatic_gradient, is.hydrostatic_gradient, is.kH(), is.kh(), is.Hmax_azimuth_deg};
   return model;
 }
 

@@ -50,7 +50,13 @@ struct InitialStressSpec {
   double surface_elevation = 0.0;         // m, where total stress and pore pressure vanish
   double lithostatic_gradient = 0.0226e6; // Pa/m (total vertical stress)
   double hydrostatic_gradient = 0.0100e6; // Pa/m (pore pressure)
-  double k0 = 1.0;                        // sigma'_h / sigma'_v
+  double k0 = 1.0;                        // sigma'_h / sigma'_v, both horizontal directions (shorthand)
+  // General in-situ state (docs/case-file.md): effective sigma'_Hmax / sigma'_v and sigma'_hmin / sigma'_v
+  // (each k0 when not given), sigma'_Hmax along (sin a, cos a, 0), a = Hmax_azimuth_deg clockwise from +y.
+  std::optional<double> k_Hmax, k_hmin;
+  double Hmax_azimuth_deg = 0.0;
+  double kH() const { return k_Hmax.value_or(k0); }
+  double kh() const { return k_hmin.value_or(k0); }
 };
 
 struct FaultSpec {

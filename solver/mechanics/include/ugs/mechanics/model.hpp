@@ -15,12 +15,16 @@
 namespace ugs::mech {
 
 // Geostatic initial state (in equilibrium, taken as the reference): with depth d = z_s - z,
-//   p0 = gamma_hyd d,  sigma'_v0 = -(gamma_lith - alpha gamma_hyd) d,  sigma'_h0 = k0 sigma'_v0.
+//   p0 = gamma_hyd d,  sigma'_v0 = -(gamma_lith - alpha gamma_hyd) d,
+//   sigma'_0 = sigma'_v0 (k_Hmax s s^T + k_hmin h h^T + e_z e_z^T),
+// s = (sin a, cos a, 0) the direction of sigma'_Hmax (a clockwise from +y, north), h = (cos a, -sin a, 0).
 struct InitialState {
   double surface_elevation = 0;  // m
   double lithostatic = 0.0226e6; // Pa/m
   double hydrostatic = 0.0100e6; // Pa/m
-  double k0 = 1.0;
+  double k_Hmax = 1.0;           // sigma'_Hmax / sigma'_v
+  double k_hmin = 1.0;           // sigma'_hmin / sigma'_v
+  double Hmax_azimuth_deg = 0.0; // degrees clockwise from +y
 
   // Initial effective stress (thesis Voigt order, Pa, tension positive) at elevation z.
   fem::Vec6 effective_stress(double z, double biot) const;

@@ -1,0 +1,195 @@
+// General in-situ stress (issue 21): [initial_stress] k_Hmax, k_hmin, Hmax_azimuth_deg.
+//  Tensor — mech::InitialState::effective_stress against the hand formula
+//       sigma' = sigma'_v (k_Hmax s s^T + k_hmin h h^T + e_z e_z^T), s = (sin a, cos a, 0),
+//       h = (cos a, -sin a, 0), at azimuths 0, 30, 90 and 135 degrees; k_Hmax = k_hmin = k0 gives
+//       the bytes of the former k0 formula {k0 sv, k0 sv, sv, 0, 0, 0}.
+//  Fault tractions — the initial tractions of build_fault_model (geostatic_fault_state) on a
+//       vertical fault and on 60-degree dipping faults at three strikes against
+//       sigma_n = n.S.n and tau = |S n - sigma_n n| with S = sigma' - alpha p0 I.
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "fault_meshes.hpp"
+#include "ugs/contact/fault_model.hpp"
+#include "ugs/fem/voigt.hpp"
+#include "ugs/mechanics/model.hpp"
+#include "ugs/meshing/box_mesh.hpp"
+
+using namespace ugs;
+
+namespace {
+
+using M3 = std::array<std::array<double, 3>, 3>;
+
+// The hand formula, written out independently of the library (tension positive, mesh axes).
+M3 hand_effective(double sv, double kH, double kh, double az_deg) {
+  const double a = az_deg * M_PI / 180;
+  const double s[3] = {std::sin(a), std::cos(a), 0}, h[3] = {std::cos(a), -std::sin(a), 0};
+  M3 S{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) S[i][j] = sv * (kH * s[i] * s[j] + kh * h[i] * h[j]);
+  S[2][2] = sv;
+  return S;
+}
+
+M3 from_voigt(const fem::Vec6& v) {
+  using namespace fem;
+  return M3{{{v[XX], v[XY], v[XZ]}, {v[XY], v[YY], v[YZ]}, {v[XZ], v[YZ], v[ZZ]}}};
+}
+
+}  // namespace
+
+TEST(InsituTensor, MatchesHandFormulaAtFourAzimuths) {
+  mech::InitialState st;
+  st.surface_elevation = 20;
+  st.k_Hmax = 1.3;
+  st.k_hmin = 0.9;
+  const double z = -1480, biot = 0.8;
+  const double sv = -(st.lithostatic - biot * st.hydrostatic) * 1500;
+  for (double az : {0.0, 30.0, 90.0, 135.0}) {
+    st.Hmax_azimuth_deg = az;
+    const M3 got = from_voigt(st.effective_stress(z, biot)), want = hand_effective(sv, 1.3, 0.9, az);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) EXPECT_NEAR(got[i][j], want[i][j], 1e-9 * std::abs(sv)) << "azimuth " << az << " [" << i << j << "]";
+  }
+  // Spot values: at 30 degrees sigma_xy = (k_H - k_h) sv sin 30 cos 30; at 90 sigma_H lies along x.
+  st.Hmax_azimuth_deg = 30;
+  EXPECT_NEAR(st.effective_stress(z, biot)[fem::XY], 0.4 * sv * 0.5 * std::sqrt(3.0) / 2, 1e-6);
+  st.Hmax_azimuth_deg = 90;
+  EXPECT_NEAR(st.effective_stress(z, biot)[fem::XX], 1.3 * sv, 1e-6);
+  EXPECT_NEAR(st.effective_stress(z, biot)[fem::YY], 0.9 * sv, 1e-6);
+}
+
+TEST(InsituTensor, K0ShorthandGivesTheFormerBytes) {
+  CaseFile cs;
+  cs.initial_stress.k0 = 0.7;
+  cs.initial_stress.Hmax_azimuth_deg = 30;  // irrelevant when both ratios are equal
+  EXPECT_EQ(cs.initial_stress.kH(), 0.7);
+  EXPECT_EQ(cs.initial_stress.kh(), 0.7);
+  mech::InitialState st;
+  st.k_Hmax = cs.initial_stress.kH();
+  st.k_hmin = cs.initial_stress.kh();
+  st.Hmax_azimuth_deg = 30;
+  for (double z : {-10.0, -777.7, -3000.0}) {
+    const double sv = -(st.lithostatic - 1.0 * st.hydrostatic) * -z;
+    const fem::Vec6 before{0.7 * sv, 0.7 * sv, sv, 0, 0, 0};
+    const fem::Vec6 now = st.effective_stress(z, 1.0);
+    EXPECT_EQ(std::memcmp(before.data(), now.data(), sizeof(before)), 0) << "z " << z;
+  }
+}
+
+// ---- initial fault tractions ---------------------------------------------------------------------
+namespace {
+
+// A plane through the grid nodes (a grid plane or the Kuhn diagonal of the cells it crosses:
+// fault_meshes.hpp): normal (nx h, ny h, nz dz) with dz = h tan(dip) the cell height.
+struct FaultCase {
+  const char* name;
+  double dip_deg;     // 90: vertical (dz = h)
+  double nx, ny, nz;  // the normal in cell units
+  double azimuth;     // of sigma_Hmax, degrees
+};
+
+Point3 unit_normal(const FaultCase& f) {
+  const double h = 50, dz = f.dip_deg == 90 ? h : h * std::tan(f.dip_deg * M_PI / 180);
+  // A plane x_loc - z_loc = 0 has the normal (1/h, 0, -1/dz): scale each axis by its cell size.
+  Point3 n{f.nx / h, f.ny / h, f.nz / dz};
+  const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (auto& v : n) v /= l;
+  return n;
+}
+
+// Box of 20 x 20 x 9 cells, with a buried planar fault through (500, 500, z of the 5th layer), inserted.
+Mesh faulted_box(const FaultCase& f) {
+  const double h = 50, dz = f.dip_deg == 90 ? h : h * std::tan(f.dip_deg * M_PI / 180);
+  BoxMeshSpec spec;
+  spec.x = linspace(0, 1000, 20);
+  spec.y = linspace(0, 1000, 20);
+  spec.z = linspace(-9 * dz, 0, 9);
+  Mesh mesh = make_box_mesh(spec);
+  const double zb = -9 * dz;
+  test::add_planar_fault(
+      mesh, "F", {500, 500, zb + 5 * dz}, unit_normal(f),
+      [&](const Point3& c) {
+        return c[0] > 200 && c[0] < 800 && c[1] > 200 && c[1] < 800 && c[2] > zb + 1.5 * dz && c[2] < -1.5 * dz;
+      },
+      1e-6);
+  test::insert_all_faults(mesh);
+  return mesh;
+}
+
+CaseFile faulted_case() {
+  CaseFile c;
+  c.path = "insitu.toml";
+  MaterialSpec m;
+  m.name = "rock";
+  m.where = "insitu.toml:1";
+  m.law = MaterialLaw::Linear;
+  m.E_Pa = 10e9;
+  m.nu_z = 0.25;
+  m.biot = 0.9;
+  c.materials.push_back(m);
+  c.initial_stress.k_Hmax = 1.3;
+  c.initial_stress.k_hmin = 0.9;
+  FaultSpec f;
+  f.name = "F";
+  f.where = "insitu.toml:2";
+  f.friction_deg = 30;
+  c.faults.push_back(f);
+  return c;
+}
+
+}  // namespace
+
+class FaultTractions : public ::testing::TestWithParam<FaultCase> {};
+
+TEST_P(FaultTractions, EqualTheProjectedInsituTensor) {
+  const FaultCase f = GetParam();
+  const Mesh mesh = faulted_box(f);
+  CaseFile cs = faulted_case();
+  cs.initial_stress.Hmax_azimuth_deg = f.azimuth;
+  const mech::Model model = mech::build_model(mesh, cs, true);
+  EXPECT_EQ(model.initial.k_Hmax, 1.3);
+  EXPECT_EQ(model.initial.k_hmin, 0.9);
+  EXPECT_EQ(model.initial.Hmax_azimuth_deg, f.azimuth);
+  const contact::FaultModel fm = contact::build_fault_model(mesh, cs, model, contact::geostatic_fault_state(model.initial));
+  ASSERT_GT(fm.pairs.size(), 20u);
+
+  const Point3 plane = unit_normal(f);  // either sign: sigma_n and tau do not depend on it
+  const auto& is = model.initial;
+  double worst = 0, tau_seen = 0, sn_seen = 0;
+  for (const auto& p : fm.pairs) {
+    const Point3 n{p.R[2], p.R[5], p.R[8]};
+    ASSERT_NEAR(std::abs(n[0] * plane[0] + n[1] * plane[1] + n[2] * plane[2]), 1.0, 1e-9);
+    const double d = -p.x[2], alpha = 0.9, p0 = is.hydrostatic * d;
+    M3 S = hand_effective(-(is.lithostatic - alpha * is.hydrostatic) * d, 1.3, 0.9, f.azimuth);
+    for (int k = 0; k < 3; ++k) S[k][k] -= alpha * p0;
+    double Sn[3];
+    for (int i = 0; i < 3; ++i) Sn[i] = S[i][0] * plane[0] + S[i][1] * plane[1] + S[i][2] * plane[2];
+    const double sn = Sn[0] * plane[0] + Sn[1] * plane[1] + Sn[2] * plane[2];
+    const double tau = std::sqrt(std::pow(Sn[0] - sn * plane[0], 2) + std::pow(Sn[1] - sn * plane[1], 2) +
+                                 std::pow(Sn[2] - sn * plane[2], 2));
+    const double scale = std::abs(sn);
+    worst = std::max(worst, std::abs(p.lambda0[2] - sn) / scale);
+    worst = std::max(worst, std::abs(std::hypot(p.lambda0[0], p.lambda0[1]) - tau) / scale);
+    tau_seen = std::max(tau_seen, tau / scale);
+    sn_seen = std::max(sn_seen, -sn);
+  }
+  std::printf("%s: %zu pairs, max tau/|sigma_n| %.4f, max |sigma_n| %.3f MPa, worst relative error %.2e\n", f.name,
+              fm.pairs.size(), tau_seen, sn_seen * 1e-6, worst);
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(tau_seen, 0.02);  // the tensor puts shear on every one of these planes
+}
+
+// Strikes (normal azimuth + 90): the vertical fault N-S (plane x = 500) and N45E (x_loc = y_loc);
+// the 60-degree faults N-S dipping east (x_loc = z_loc), E-W dipping south (y_loc = z_loc), and the
+// N-S one under sigma_Hmax at 135 degrees (a third strike relative to the stress).
+INSTANTIATE_TEST_SUITE_P(Planes, FaultTractions,
+                         ::testing::Values(FaultCase{"vertical_strike_N", 90, 1, 0, 0, 30},
+                                           FaultCase{"vertical_strike_N45E", 90, 1, -1, 0, 30},
+                                           FaultCase{"dip60_strike_N", 60, 1, 0, -1, 30},
+                                           FaultCase{"dip60_strike_E", 60, 0, 1, -1, 30},
+                                           FaultCase{"dip60_strike_N_Hmax135", 60, 1, 0, -1, 135}),
+                         [](const auto& info) { return std::string(info.param.name); });
