@@ -226,6 +226,37 @@ TEST(SolveTool, TurningPointStepsMatchEveryDate) {
   r = test::run(test::solve_cmd() + " " + args + " --case " + d / "turning.toml" + " -o " + d / "turning.h5" + " -v");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("turning-point steps: 9 of 12 dates"), std::string::npos) << r.err;
+  // The dates skipped are named once, with how to keep them (issue 20: they were dropped from the
+  // top-surface series without a word).
+  const std::string skipped = "turning.toml: steps = \"turning-points\": 3 of the 12 pressure dates are not stepped on and are "
+                              "missing from the top-surface series; list the dates you need in [output] dates, or set [solver] "
+                              "steps = \"every-date\"";
+  const auto at = r.err.find("ugs-solve: warning: ");
+  EXPECT_NE(at, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(skipped), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(skipped), r.err.rfind(skipped)) << r.err;
+  // Every output date is kept: the results hold both, the top surface has them.
+  FieldSeriesReader results(d / "turning.h5");
+  ASSERT_EQ(results.steps().size(), 2u);
+  EXPECT_EQ(results.steps()[0].date, "1960-03-01");
+  EXPECT_EQ(results.steps()[1].date, "1960-09-01");
+  // An output date that is no turning point (1959-11-01, during the monotonic depletion) is a step,
+  // in the results and the top surface, and only the dates not asked for are skipped.
+  variant(d, "dates = [\"1960-03-01\", \"1960-09-01\"]", "dates = [\"1959-11-01\", \"1960-03-01\", \"1960-09-01\"]",
+          "turning_out.toml");
+  {
+    std::string t = test::slurp(d / "turning_out.toml");
+    t.replace(t.find("[output]"), 8, "[solver]\nsteps = \"turning-points\"\n\n[output]");
+    test::spit(d / "turning_out.toml", t);
+  }
+  r = test::run(test::solve_cmd() + " " + args + " --case " + d / "turning_out.toml" + " -o " + d / "turning_out.h5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("2 of the 12 pressure dates are not stepped on"), std::string::npos) << r.err;
+  FieldSeriesReader out_results(d / "turning_out.h5"), out_top(d / "turning_out_top.h5");
+  ASSERT_EQ(out_results.steps().size(), 3u);
+  EXPECT_EQ(out_results.steps()[0].date, "1959-11-01");
+  ASSERT_EQ(out_top.steps().size(), 10u);
+  EXPECT_EQ(out_top.steps()[0].date, "1959-11-01");
   FieldSeriesReader all(d / "all_top.h5"), turning(d / "turning_top.h5");
   ASSERT_EQ(all.steps().size(), 12u);
   ASSERT_EQ(turning.steps().size(), 9u);

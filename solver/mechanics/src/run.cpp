@@ -188,9 +188,17 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
       if (cp) since_checkpoint = 0;
       is_checkpoint.push_back(cp);
     }
-    if (root->cs.steps == "turning-points")
+    if (root->cs.steps == "turning-points") {
       log(1, fmt::format("turning-point steps: {} of {} dates (turning points of the pressure, output dates, the last date)",
                          dates.size(), in_run));
+      // Every output date is a step; the other dates skipped are missing from the per-step outputs
+      // (an InSAR comparison would interpolate across them): say so once.
+      if (dates.size() < in_run)
+        log_later(-1, fmt::format("{}: steps = \"turning-points\": {} of the {} pressure dates are not stepped on and are "
+                                  "missing from the top-surface series{}; list the dates you need in [output] dates, or "
+                                  "set [solver] steps = \"every-date\"",
+                                  root->cs.path, in_run - dates.size(), in_run, outs.empty() ? " and the results" : ""));
+    }
   }
   dates = broadcast_strings(comm, dates);
   std::uint64_t nsteps = dates.size();
