@@ -458,7 +458,15 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"bad_steps", "inversion_rule = \"sigma-max\"", "inversion_rule = \"sigma-max\"\nsteps = \"some\"",
                               "steps': must be one of every-date, turning-points"},
                       BadCase{"turning_points_need_sigma_max", "inversion_rule = \"sigma-max\"",
-                              "inversion_rule = \"sigma-inversion\"\nsteps = \"turning-points\"", "turning-points needs inversion_rule"}),
+                              "inversion_rule = \"sigma-inversion\"\nsteps = \"turning-points\"", "turning-points needs inversion_rule"},
+                      // Numbers the reader accepts but ugs-solve cannot use (issue 20).
+                      BadCase{"tolerance_one", "inversion_rule = \"sigma-max\"", "inversion_rule = \"sigma-max\"\ntolerance = 1",
+                              "bad.toml: [solver] tolerance = 1: outside [1e-14, 1)"},
+                      BadCase{"tolerance_below_precision", "inversion_rule = \"sigma-max\"",
+                              "inversion_rule = \"sigma-max\"\ntolerance = 1e-20", "[solver] tolerance = 1e-20: outside [1e-14, 1)"},
+                      BadCase{"newton_iterations_huge", "inversion_rule = \"sigma-max\"",
+                              "inversion_rule = \"sigma-max\"\nmax_newton_iterations = 1000000",
+                              "[solver] max_newton_iterations = 1000000: more than 1000"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(SolveTool, PressureFromAnotherMeshIsBadInput) {
@@ -636,4 +644,12 @@ TEST(SolveTool, HelpAndUsage) {
   EXPECT_NE(r.err.find("--case"), std::string::npos);
   r = test::run(test::solve_cmd() + " mesh.msh --case c.toml --pressure p.h5 --solver lu");
   EXPECT_EQ(r.exit_code, 2);
+  // Command-line numbers: in range or exit 2, one line naming the option and the value.
+  for (const std::string v : {"-1", "nan", "1e99", "2.5", "2000000"}) {
+    r = test::run(test::solve_cmd() + " mesh.msh --case c.toml --pressure p.h5 --checkpoint-every " + v);
+    EXPECT_EQ(r.exit_code, 2) << v;
+    EXPECT_NE(r.err.find("--checkpoint-every"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(v == "-1" || v == "2000000" ? "not in range 0 to 1000000" : v), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember({"ptscotch", "rcb"}));
   app.add_option("--checkpoint-every", opt.checkpoint_every, "Also save the restart state every N steps (overrides the case)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000000));
   ugs::contact::FaultedRunOptions fault_opt;
   ugs::contact::add_fault_options(app, fault_opt);
   app.footer("PETSc options follow a '--': ugs-solve ... -- -pc_type hypre -ksp_monitor -log_view");

@@ -76,6 +76,19 @@ std::vector<std::string> broadcast_strings(MPI_Comm comm, std::vector<std::strin
   return v;
 }
 
+// The [solver] numbers the reader takes as they come (positive, at least 1) must also be usable:
+// a Newton tolerance of 1 or more accepts the first iterate of every step (no equilibrium, exit 0),
+// one below 1e-14 is beyond double precision (every step would fail after all its sub-steps), and
+// 10^9 Newton iterations per sub-step never end.
+void check_solver_settings(const CaseFile& cs) {
+  if (!(cs.newton_tolerance >= 1e-14 && cs.newton_tolerance < 1))
+    throw InputError(cs.path, fmt::format("[solver] tolerance = {}: outside [1e-14, 1) (a relative residual ||r|| / ||r_0||)",
+                                          cs.newton_tolerance));
+  if (cs.max_newton_iterations > 1000)
+    throw InputError(cs.path, fmt::format("[solver] max_newton_iterations = {}: more than 1000 (a step takes 2-25)",
+                                          cs.max_newton_iterations));
+}
+
 }  // namespace
 
 std::string output_stem(const std::string& h5) {
@@ -117,6 +130,7 @@ RunSummary run_solve(MPI_Comm comm, const RunOptions& o) {
     if (o.pressure.empty()) throw InputError("--pressure", "at least one pressure field series (ugs-flow output) is required");
     if (o.output == "-" || o.output.empty()) throw InputError("-o", "results are HDF5 files: give a file name");
     R.cs = read_case_file(o.case_file);
+    check_solver_settings(R.cs);
     R.mesh = read_msh(o.mesh);
     if (o.faulted && R.mesh.count(ElementType::Prism) > 0) {
       if (R.cs.steps != "every-date")
