@@ -3,6 +3,11 @@
 #include <gmsh.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <limits>
+#include <regex>
+
 #include "run_tool.hpp"
 #include "ugs/formats/msh.hpp"
 
@@ -84,6 +89,88 @@ TEST(MshRoundTrip, ReadsFromAnInMemoryStreamWithoutSize) {
   auto in = InputStream::from_string(test::slurp(dir / "c.msh"), "mem");
   const Mesh m = read_msh(*in);
   EXPECT_EQ(m.count(ElementType::Tetrahedron), 6u);
+  fs::remove_all(dir);
+}
+
+// ---- issue 20: errors name the offending record: the byte offset of the element in binary input
+// (not of the 64 k-element chunk read), "byte N" wording throughout binary input, lines for ASCII.
+namespace {
+
+std::string error_of(const std::string& bytes) {
+  auto in = InputStream::from_string(bytes, "m.msh");
+  try {
+    read_msh(*in);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Offset of the binary element record (tag, then its node tags) of `element` in `bytes`.
+std::size_t record_offset(const std::string& bytes, const Mesh& m, std::uint64_t element) {
+  for (const auto& b : m.blocks)
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b.tags[i] == element) {
+        std::string rec(reinterpret_cast<const char*>(&b.tags[i]), 8);
+        for (auto n : b.element(i)) {
+          const std::uint64_t t = m.node_tags[n];
+          rec.append(reinterpret_cast<const char*>(&t), 8);
+        }
+        return bytes.find(rec);
+      }
+  return std::string::npos;
+}
+
+}  // namespace
+
+TEST(MshErrors, BinaryElementErrorsNameTheElementsByteOffset) {
+  const auto dir = test::temp_dir("msh-errors");
+  const Mesh m = test::unit_cube_mesh();
+  std::string bytes = write_to_string(m, MshEncoding::Binary, dir, "c.msh");
+  const std::size_t at = record_offset(bytes, m, 4);
+  ASSERT_NE(at, std::string::npos);
+  const std::uint64_t missing = 99;
+  std::string bad = bytes;
+  bad.replace(at + 16, 8, std::string(reinterpret_cast<const char*>(&missing), 8));  // its second node
+  EXPECT_EQ(error_of(bad), fmt::format("m.msh: byte {}: element 4 refers to missing node 99", at));
+  const std::uint64_t zero = 0;
+  bad = bytes;
+  bad.replace(at, 8, std::string(reinterpret_cast<const char*>(&zero), 8));
+  EXPECT_EQ(error_of(bad), fmt::format("m.msh: byte {}: element tag 0 is not allowed", at));
+  // A node coordinate: the offset of that node's coordinates.
+  const double x78[6] = {0, 1, 1, 1, 1, 1};  // nodes 7 and 8 of the cube
+  const std::size_t c7 = bytes.find(std::string(reinterpret_cast<const char*>(x78), 48), bytes.find("$Nodes"));
+  ASSERT_NE(c7, std::string::npos);
+  const std::size_t c = c7 + 24;
+  const double inf = std::numeric_limits<double>::infinity();
+  bad = bytes;
+  bad.replace(c + 8, 8, std::string(reinterpret_cast<const char*>(&inf), 8));
+  EXPECT_EQ(error_of(bad), fmt::format("m.msh: byte {}: node 8 has a non-finite coordinate", c));
+  fs::remove_all(dir);
+}
+
+TEST(MshErrors, BinaryHeadersUseByteWordingAndIndicesAreChecked) {
+  const auto dir = test::temp_dir("msh-errors2");
+  const Mesh m = test::unit_cube_mesh();
+  const std::string bytes = write_to_string(m, MshEncoding::Binary, dir, "c.msh");
+  // The element block header: an unsupported type, at the offset of the block header.
+  const std::size_t els = bytes.find("$Elements\n") + 10 + 32;  // after the 4 size_t of the section header
+  std::string bad = bytes;
+  const int type = 99;
+  bad.replace(els + 8, 4, std::string(reinterpret_cast<const char*>(&type), 4));
+  const std::string e = error_of(bad);
+  EXPECT_EQ(e.rfind(fmt::format("m.msh: byte {}: unsupported element type 99", els), 0), 0u) << e;
+  // A section that does not end: "byte N", never a line number, in a binary file.
+  const std::string cut = bytes.substr(0, bytes.find("$EndNodes")) + "$Junk\n";
+  EXPECT_TRUE(std::regex_search(error_of(cut), std::regex("^m\\.msh: byte [0-9]+: "))) << error_of(cut);
+  // ASCII: entity tags and physical tags are checked before use, with the line.
+  const std::string ascii = write_to_string(m, MshEncoding::Ascii, dir, "a.msh");
+  const auto ent = ascii.find("$Entities\n");
+  const auto line_of = [&](std::size_t pos) { return std::count(ascii.begin(), ascii.begin() + pos, '\n') + 1; };
+  const auto vol = ascii.find("\n", ascii.find("\n", ent) + 1) + 1;  // first entity line (the cube's volume)
+  std::string a = ascii;
+  a.replace(vol, 1, "0");  // entity tag 1 -> 0
+  EXPECT_EQ(error_of(a).rfind(fmt::format("m.msh:{}: entity tag 0 must be positive", line_of(vol)), 0), 0u) << error_of(a);
   fs::remove_all(dir);
 }
 
