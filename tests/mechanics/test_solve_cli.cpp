@@ -539,6 +539,10 @@ TEST(SolveTool, DamagedPressureAndStateFilesAreBadInput) {
     expect_bad("", fmt::format("flow.h5: field 'dp' at step {}: value nan at entry 3 is not a finite number", dates[step]),
                "nan dp");
   }
+  // A finite pressure change no reservoir has (1e12 Pa): refused rather than solved.
+  test::spit(d / "flow.h5", good);
+  poke<double>(d / "flow.h5", "/steps/{step}/node/dp", 3, 1e12, H5T_NATIVE_DOUBLE, 1);
+  expect_bad("", fmt::format("flow.h5: field 'dp' at step {}: value 1e+12 at entry 3 is beyond +-1e+09", dates[1]), "huge dp");
   test::spit(d / "flow.h5", good);
   poke_time(d / "flow.h5", 1, INFINITY);
   expect_bad("", "flow.h5: step 1 (2001-01-01): time inf is not a finite number of seconds", "time");

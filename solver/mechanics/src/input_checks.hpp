@@ -23,13 +23,20 @@ inline void check_connectivity(const std::string& path, const std::string& datas
                                          i / per_cell, conn[i], nodes));
 }
 
-// Every value of a field is finite.
+// Every value of a field is finite (and, with a bound, within [-bound, bound]).
 inline void check_finite(const std::string& path, const std::string& what, const std::vector<double>& v, int components,
-                         const char* expected) {
-  for (std::size_t i = 0; i < v.size(); ++i)
+                         const char* expected, double bound = INFINITY) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i]))
       throw InputError(path, fmt::format("{}: value {} at entry {} is not a finite number (expected {})", what, v[i],
                                          i / static_cast<std::size_t>(components), expected));
+    if (std::abs(v[i]) > bound)
+      throw InputError(path, fmt::format("{}: value {:g} at entry {} is beyond +-{:g} (expected {})", what, v[i],
+                                         i / static_cast<std::size_t>(components), bound, expected));
+  }
 }
+
+// A pressure change beyond 1 GPa is no reservoir's (the lithostatic stress at 10 km is 0.23 GPa).
+inline constexpr double kMaxPressureChangePa = 1e9;
 
 }  // namespace ugs::mech

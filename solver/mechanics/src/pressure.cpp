@@ -41,7 +41,8 @@ struct PressureHistory::File {
     if (f.values.size() != count)
       throw InputError(reader->path(), fmt::format("field 'dp' has {} values, expected {} (one per file {})", f.values.size(), count,
                                                    cells ? "cell" : "node"));
-    check_finite(reader->path(), fmt::format("field 'dp' at step {}", reader->steps()[s].date), f.values, 1, "a pressure change in Pa");
+    check_finite(reader->path(), fmt::format("field 'dp' at step {}", reader->steps()[s].date), f.values, 1, "a pressure change in Pa",
+                 kMaxPressureChangePa);
     values[slot] = std::move(f.values);
     cached[slot] = s;
     return values[slot];
