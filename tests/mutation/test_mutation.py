@@ -57,6 +57,9 @@ def tool_specs():
         "mesh2d": (1.0, ["domain.geojson", "faults.geojson", "traces.geojson"],
                    "--domain {IN}/domain.geojson --fault {IN}/faults.geojson --refine {IN}/traces.geojson "
                    "--hmax 2500 -q -o {OUT}/plan.msh"),
+        "mesh2d:lines": (0.5, ["domain.geojson", "sections.geojson", "traces.geojson"],
+                         "--domain {IN}/domain.geojson --section {IN}/sections.geojson --trace {IN}/traces.geojson "
+                         "--hmax 3000 -q -o {OUT}/plan.msh"),
         "meshgen": (1.0, ["plan.msh", "strata.toml", "traces.geojson", "aquifers.geojson", "faults.geojson"],
                     "{IN}/plan.msh --strata {IN}/strata.toml -q -o {OUT}/model.msh"),
         "faultinsert": (1.0, ["model.msh", "faults.geojson"],
@@ -68,9 +71,15 @@ def tool_specs():
         "solve": (0.7, ["model.msh", "case.toml", "pool_x_dp.h5"],
                   "{IN}/model.msh --case {IN}/case.toml --pressure {IN}/pool_x_dp.h5 --solver cholmod "
                   "--until 1950-04-01 --state none -q -o {OUT}/solve.h5"),
+        "solve:faulted": (0.3, ["faulted.msh", "case.toml", "pool_x_dp.h5"],
+                          "{IN}/faulted.msh --case {IN}/case.toml --pressure {IN}/pool_x_dp.h5 --fault-solver mumps "
+                          "--until 1950-03-01 --state none --top none -q -o {OUT}/faulted.h5"),
         "sample": (1.0, ["solve_top.h5", "measured.csv", "case.toml"],
                    "--results {IN}/solve_top.h5 --points {IN}/measured.csv --case {IN}/case.toml --at-ps-dates "
                    "--ascending 34/-10 --descending 39/-170 -q -o {OUT}/samples.csv"),
+        "sample:ogr": (0.5, ["solve.h5", "model.msh", "ps_points.geojson", "case.toml"],
+                       "--results {IN}/solve.h5 --mesh {IN}/model.msh --points {IN}/ps_points.geojson "
+                       "--case {IN}/case.toml -q -o {OUT}/samples.csv"),
         "calibrate": (0.5, ["case.toml", "model.msh", "measured.csv", "pool_x_dp.h5"],
                       "--case {IN}/case.toml --mesh {IN}/model.msh --param material.pool_x.c_R=2:6 "
                       "--measured {IN}/measured.csv --scan 2 --max-evals 2 -q -o {OUT}/calibration "
@@ -81,9 +90,14 @@ def tool_specs():
     }
 
 
-def command(build, tool, spec, in_dir, out_dir):
+def command(build, key, spec, in_dir, out_dir):
     args = spec[2].replace("{SOLVE}", tool_exe(build, "solve")).replace("{IN}", in_dir).replace("{OUT}", out_dir)
-    return [tool_exe(build, tool)] + shlex.split(args)
+    return [tool_exe(build, tool_of(key))] + shlex.split(args)
+
+
+def tool_of(key):
+    """'solve:faulted' (a second way to run ugs-solve) -> 'solve'."""
+    return key.split(":")[0]
 
 
 # ---- the valid chain ---------------------------------------------------------------------------
@@ -97,6 +111,7 @@ def make_chain(build, base):
         [b("meshgen"), "plan.msh", "--strata", "strata.toml", "-q", "-o", "model.msh"],
         [b("submesh"), "model.msh", "--case", "case.toml", "--pool", "Pool X", "-q", "-o", "pool_x.msh"],
         [b("flow"), "pool_x.msh", "--case", "case.toml", "-q", "-o", "pool_x_dp.h5"],
+        [b("faultinsert"), "model.msh", "--faults", "faults.geojson", "-q", "-o", "faulted.msh"],
         [b("solve"), "model.msh", "--case", "case.toml", "--pressure", "pool_x_dp.h5", "--solver", "cholmod",
          "--state", "none", "-q", "-o", "solve.h5"],
     ]
@@ -188,8 +203,9 @@ def prepare_run(base, specs, tool, seed, run_dir):
 
 
 # ---- checks ------------------------------------------------------------------------------------
-def check_run(tool, r, out_dir):
+def check_run(key, r, out_dir):
     """Problems of one finished run (empty list: fine)."""
+    tool = tool_of(key)
     problems = []
     rc = r["rc"]
     if rc is None:
@@ -253,7 +269,7 @@ def main():
     ap.add_argument("--runs", type=int, default=24, help="mutated runs of a tool of weight 1")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--tools", default="")
-    ap.add_argument("--replay", default="", help="TOOL:SEED: one run, kept in WORK/replay")
+    ap.add_argument("--replay", default="", help="TOOL:SEED (TOOL as listed, e.g. solve:faulted): one run, kept in WORK/replay")
     a = ap.parse_args()
     build, work = os.path.abspath(a.build), os.path.abspath(a.work)
     specs = tool_specs()
@@ -262,7 +278,7 @@ def main():
     os.environ["OMPI_MCA_rmaps_base_oversubscribe"] = "1"
 
     if a.replay:
-        tool, seed = a.replay.split(":")
+        tool, seed = a.replay.rsplit(":", 1)
         if not os.path.exists(os.path.join(base, "solve_top.h5")):
             make_chain(build, base)
         r = run_one(build, base, specs, tool, int(seed), os.path.join(work, "replay"), keep=True)
@@ -289,12 +305,12 @@ def main():
             results.append(f.result())
 
     failed = []
-    print(f"{'tool':<12} {'runs':>5} {'exit0':>6} {'exit1':>6} {'exit2':>6} {'fail':>5} {'seconds':>8}")
+    print(f"{'tool':<14} {'runs':>5} {'exit0':>6} {'exit1':>6} {'exit2':>6} {'fail':>5} {'seconds':>8}")
     for tool in tools:
         rs = [r for r in results if r["tool"] == tool]
         codes = [r["rc"] for r in rs]
         bad = [r for r in rs if r["problems"]]
-        print(f"ugs-{tool:<8} {len(rs):>5} {codes.count(0):>6} {codes.count(1):>6} {codes.count(2):>6} {len(bad):>5} "
+        print(f"{tool:<14} {len(rs):>5} {codes.count(0):>6} {codes.count(1):>6} {codes.count(2):>6} {len(bad):>5} "
               f"{sum(r['seconds'] for r in rs):>8.0f}")
         failed += sorted(bad, key=lambda r: (r["seed"] is not None, r["seed"] or 0))
     print(f"{len(results)} runs in {time.time() - t0:.0f} s")
