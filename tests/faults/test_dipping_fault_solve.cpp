@@ -4,11 +4,14 @@
 // tractions ugs-solve reports must be the initial stress tensor sigma_0(z) (docs/case-file.md:
 // sigma'_v = -(lithostatic - alpha hydrostatic) d, sigma'_h = k0 sigma'_v, minus alpha p_0)
 // projected on the prescribed plane (from the faults file's dip and dip direction, not from the
-// mesh), node pair by node pair, to 1e-6 relative: normal and shear tractions.
+// mesh), node pair by node pair, to 1e-6 relative: normal and shear tractions. Issue 21: the same
+// case in the long form (k_Hmax = k_hmin = 0.7, Hmax_azimuth_deg = 40) gives the same output bytes,
+// and k0 with k_Hmax is refused (exit 2, one line).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
@@ -168,6 +171,45 @@ TEST(DippingFaultSolve, TractionsEqualTheInitialStressProjectedOnThePlane) {
     EXPECT_LE(worst_t, 1e-6);
     EXPECT_LE(worst_vec, 1e-6);
   }
+
+  // Issue 21: k0 is the shorthand for k_Hmax = k_hmin = k0 (whatever the azimuth): the same case
+  // written in the long form gives the same bytes in every output file.
+  std::string long_form = kCase;
+  long_form.replace(long_form.find("k0 = 0.7"), 8, "k_Hmax = 0.7\nk_hmin = 0.7\nHmax_azimuth_deg = 40");
+  std::ofstream(dir / "case_long.toml") << long_form;
+  fs::create_directories(dir / "long");  // same output names (the .xdmf names its .h5)
+  r = run(cd + tool("ugs-solve") + " faulted.msh --case case_long.toml --pressure flow.h5 --solver mumps -o long/out.h5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t compared = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("out", 0) != 0) continue;
+    const fs::path other = dir / "long" / name;
+    ASSERT_TRUE(fs::exists(other)) << other;
+    // The tables' comment lines name the command (another case file); the data must match.
+    auto data = [](const fs::path& p) {
+      std::string all = slurp(p), kept;
+      if (p.extension() != ".csv") return all;
+      std::istringstream in(all);
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("#", 0) != 0) kept += line + "\n";
+      return kept;
+    };
+    EXPECT_EQ(data(entry.path()), data(other)) << name << " differs";
+    ++compared;
+  }
+  EXPECT_GE(compared, 2u);  // out.h5, out_faults.h5 and the tables
+
+  // Both forms at once: exit 2, one line naming the file, line, key and value.
+  std::string both = kCase;
+  both.replace(both.find("k0 = 0.7"), 8, "k0 = 0.7\nk_Hmax = 1.3");
+  std::ofstream(dir / "case_both.toml") << both;
+  r = run(cd + tool("ugs-solve") + " faulted.msh --case case_both.toml --pressure flow.h5 --solver mumps -o both.h5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "ugs-solve: error: case_both.toml:6: 'initial_stress.k_Hmax': 1.3 given together with k0 = 0.7 (k0 is the "
+                   "shorthand for k_Hmax = k_hmin; give one form)\n");
+  EXPECT_FALSE(fs::exists(dir / "both.h5"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
