@@ -1,4 +1,5 @@
 // Fault traces from any OGR vector file (GeoJSON, GeoPackage, Shapefile, ...), through geodata.
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <map>
@@ -61,61 +62,94 @@ std::optional<std::vector<double>> number_list(const geo::Feature& f, const std:
 
 }  // namespace
 
-bool feature_has_dip(const geo::Feature& f) {
-  return f.text_of("dip_deg").has_value() || f.text_of("listric_dip_deg").has_value();
+std::vector<FaultRecord> read_fault_file(const std::string& path, const std::string& model_wkt,
+                                         const std::string& name_field) {
+  const geo::VectorData data = geo::read_vector(path, model_wkt);
+  std::vector<FaultRecord> out;
+  std::map<std::string, std::string> seen;  // name -> where
+  for (const auto& f : data.features) {
+    FaultRecord r;
+    r.where = fmt::format("{}: feature {}", path, f.fid);
+    r.name = f.text_of(name_field).value_or("");
+    if (r.name.rfind("fault:", 0) == 0) r.name = r.name.substr(6);
+    if (r.name.empty()) throw InputError(r.where, fmt::format("a fault has no '{}'", name_field));
+    const std::string who = fmt::format("fault '{}'", r.name);
+    auto number = [&](const char* field) -> std::optional<double> {
+      auto v = number_field(f, field, r.where, who);
+      if (v && !std::isfinite(*v)) throw InputError(r.where, fmt::format("{}: {} = {} is not a finite number", who, field, *v));
+      return v;
+    };
+    r.top = number("top_m");
+    r.bottom = number("bottom_m");
+    r.dip_deg = number("dip_deg");
+    r.dip_dir_deg = number("dip_dir_deg");
+    r.trace_z = number("trace_z_m");
+    r.size = number("size_m");
+    if (r.top && r.bottom && !(*r.top >= *r.bottom))
+      throw InputError(r.where, fmt::format("{}: bottom_m {} lies above top_m {}", who, *r.bottom, *r.top));
+    if (r.dip_deg && !(*r.dip_deg > 0 && *r.dip_deg <= 90))
+      throw InputError(r.where, fmt::format("{}: dip_deg {} is outside (0, 90]", who, *r.dip_deg));
+    if (r.size && !(*r.size > 0)) throw InputError(r.where, fmt::format("{}: size_m must be > 0 (got {})", who, *r.size));
+    const auto lb = number_list(f, "listric_bottom_m", r.where, who);
+    const auto ld = number_list(f, "listric_dip_deg", r.where, who);
+    if (lb.has_value() != ld.has_value())
+      throw InputError(r.where, fmt::format("{}: listric_bottom_m and listric_dip_deg go together", who));
+    if (lb) {
+      if (lb->size() != ld->size())
+        throw InputError(r.where, fmt::format("{}: listric_bottom_m has {} values, listric_dip_deg {}", who, lb->size(),
+                                              ld->size()));
+      for (double v : *lb)
+        if (!std::isfinite(v)) throw InputError(r.where, fmt::format("{}: listric_bottom_m holds {}", who, v));
+      for (double v : *ld)
+        if (!(v > 0 && v <= 90)) throw InputError(r.where, fmt::format("{}: listric_dip_deg {} is outside (0, 90]", who, v));
+      r.listric_bottom = *lb;
+      r.listric_dip = *ld;
+    }
+    if (auto e = f.text_of("ends_against"); e && !e->empty()) r.ends_against = e->rfind("fault:", 0) == 0 ? e->substr(6) : *e;
+    if (f.lines.empty())
+      throw InputError(r.where, fmt::format("{}: the feature is not a line (fault traces are (multi)line strings)", who));
+    for (const auto& l : f.lines) r.lines.emplace_back(l.begin(), l.end());
+    if (auto [it, fresh] = seen.emplace(r.name, r.where); !fresh)
+      throw InputError(r.where, fmt::format("fault '{}' is also defined at {}", r.name, it->second));
+    out.push_back(std::move(r));
+  }
+  if (out.empty()) throw InputError(path, "no fault traces in the file");
+  return out;
 }
 
-FaultTrace fault_trace_from_feature(const geo::Feature& f, const std::string& where) {
+FaultTrace fault_trace_from_record(const FaultRecord& r, const std::string& why) {
   FaultTrace t;
-  t.where = where;
-  t.name = f.text_of("name").value_or("");
-  if (t.name.rfind("fault:", 0) == 0) t.name = t.name.substr(6);
-  if (t.name.empty()) throw InputError(t.where, "a fault trace has no 'name'");
-  const std::string who = fmt::format("fault '{}'", t.name);
-  auto need = [&](const char* field) {
-    auto v = number_field(f, field, t.where, who);
+  t.where = r.where;
+  t.name = r.name;
+  auto need = [&](const std::optional<double>& v, const char* field) {
     if (!v)
-      throw InputError(t.where, fmt::format("{}: missing field '{}' (a trace needs name, top_m, bottom_m, dip_deg, "
-                                            "dip_dir_deg)",
-                                            who, field));
+      throw InputError(t.where, fmt::format("fault '{}': missing field '{}' ({} name, top_m, bottom_m, dip_deg, dip_dir_deg)",
+                                            r.name, field, why));
     return *v;
   };
-  t.top = need("top_m");
-  t.bottom = need("bottom_m");
-  const auto lb = number_list(f, "listric_bottom_m", t.where, who);
-  const auto ld = number_list(f, "listric_dip_deg", t.where, who);
-  if (lb.has_value() != ld.has_value())
-    throw InputError(t.where, fmt::format("{}: listric_bottom_m and listric_dip_deg go together", who));
-  if (lb) {
-    if (lb->size() != ld->size())
-      throw InputError(t.where, fmt::format("{}: listric_bottom_m has {} values, listric_dip_deg {}", who, lb->size(),
-                                            ld->size()));
-    for (std::size_t i = 0; i < lb->size(); ++i) t.pieces.push_back({(*lb)[i], (*ld)[i]});
-    t.dip_deg = number_field(f, "dip_deg", t.where, who).value_or(t.pieces.front().dip_deg);
-  } else {
-    t.dip_deg = need("dip_deg");
-  }
-  t.dip_dir_deg = need("dip_dir_deg");
-  t.trace_z = number_field(f, "trace_z_m", t.where, who).value_or(t.top);
-  if (auto e = f.text_of("ends_against"); e && !e->empty()) t.ends_against = e->rfind("fault:", 0) == 0 ? e->substr(6) : *e;
-  if (f.lines.empty())
-    throw InputError(t.where, fmt::format("{}: the feature is not a line (fault traces are (multi)line strings)", who));
-  for (const auto& l : f.lines) t.parts.emplace_back(l.begin(), l.end());
+  t.top = need(r.top, "top_m");
+  t.bottom = need(r.bottom, "bottom_m");
+  for (std::size_t i = 0; i < r.listric_bottom.size(); ++i) t.pieces.push_back({r.listric_bottom[i], r.listric_dip[i]});
+  t.dip_deg = t.pieces.empty() ? need(r.dip_deg, "dip_deg") : r.dip_deg.value_or(t.pieces.front().dip_deg);
+  t.dip_dir_deg = need(r.dip_dir_deg, "dip_dir_deg");
+  t.trace_z = r.trace_z.value_or(t.top);
+  t.ends_against = r.ends_against;
+  t.parts = r.lines;
   check_fault_trace(t);
   return t;
 }
 
+std::optional<Point3> record_reference_normal(const FaultRecord& r) {
+  if (!r.dip_dir_deg) return std::nullopt;
+  constexpr double deg = 3.14159265358979323846 / 180.0;
+  const double dip = (r.dip_deg ? *r.dip_deg : r.listric_dip.empty() ? 90.0 : r.listric_dip.front()) * deg;
+  const double az = *r.dip_dir_deg * deg;
+  return Point3{-std::sin(dip) * std::sin(az), -std::sin(dip) * std::cos(az), -std::cos(dip)};
+}
+
 std::vector<FaultTrace> read_fault_traces(const std::string& path, const std::string& model_wkt) {
-  const geo::VectorData data = geo::read_vector(path, model_wkt);
   std::vector<FaultTrace> out;
-  std::map<std::string, std::string> seen;  // name -> where
-  for (const auto& f : data.features) {
-    FaultTrace t = fault_trace_from_feature(f, fmt::format("{}: feature {}", path, f.fid));
-    if (auto [it, fresh] = seen.emplace(t.name, t.where); !fresh)
-      throw InputError(t.where, fmt::format("fault '{}' is also defined at {}", t.name, it->second));
-    out.push_back(std::move(t));
-  }
-  if (out.empty()) throw InputError(path, "no fault traces in the file");
+  for (const auto& r : read_fault_file(path, model_wkt)) out.push_back(fault_trace_from_record(r));
   return out;
 }
 

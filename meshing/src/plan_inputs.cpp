@@ -1,6 +1,7 @@
 // ugs-mesh2d's inputs: vector files read through OGR, reprojected to the model CRS, clipped to the
 // domain with GEOS, turned into a PlanSpec.
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <optional>
 
@@ -9,6 +10,7 @@
 
 #include "ugs/meshing/gdal_util.hpp"
 #include "ugs/formats/error.hpp"
+#include "ugs/meshing/fault_traces.hpp"
 #include "ugs/meshing/plan_mesh.hpp"
 
 namespace ugs {
@@ -222,10 +224,33 @@ LoadedPlan load_plan_inputs(const PlanInputs& in) {
     if (cut) out.notes.push_back(fmt::format("{}: {} traces clipped to the domain", path, cut));
   }
 
+  // Faults files through the one faults reader and schema of ugs-meshgen and ugs-faultinsert
+  // (fault_traces.hpp): ugs-mesh2d uses name, the line and size_m.
+  auto fault_features = [&](const std::string& path) {
+    std::vector<RawFeature> out;
+    for (const auto& r : read_fault_file(path, model_wkt, in.name_field)) {
+      RawFeature f;
+      f.fid = std::strtoll(r.where.substr(r.where.rfind(' ') + 1).c_str(), nullptr, 10);
+      f.name = r.name;
+      if (f.name.find_first_of("\"\n\r") != std::string::npos)
+        throw InputError(path, fmt::format("feature {}: name '{}' holds quotes or line breaks", f.fid, f.name));
+      f.size = r.size;
+      auto ml = std::make_unique<OGRMultiLineString>();
+      for (const auto& l : r.lines) {
+        auto ls = std::make_unique<OGRLineString>();
+        for (const auto& q : l) ls->addPoint(q[0], q[1]);
+        ml->addGeometryDirectly(ls.release());
+      }
+      if (ml->getNumGeometries() == 1) f.geom.reset(ml->getGeometryRef(0)->clone());
+      else f.geom = std::move(ml);
+      out.push_back(std::move(f));
+    }
+    return out;
+  };
   for (const auto& [kind, files] : {std::pair{"fault", &in.fault_files}, std::pair{"section", &in.section_files}}) {
     for (const auto& path : *files) {
       std::size_t cut = 0;
-      for (auto& f : read_features(path, model_wkt, in)) {
+      for (auto& f : std::string(kind) == "fault" ? fault_features(path) : read_features(path, model_wkt, in)) {
         if (!is_linear(*f.geom))
           throw InputError(path, fmt::format("{} is not a line: {}s are lines (traces)", feature_label(f), kind));
         auto g = clipped(f, path, cut);

@@ -389,10 +389,10 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
   // built by cutting the layered mesh (docs/dipping-faults.md); plan fault lines of the others are
   // vertical faults over their range.
   const bool have_ranges = !strata.faults_file.empty() || !strata.faults.empty();
-  std::optional<geo::VectorData> fault_features;
+  std::optional<std::vector<FaultRecord>> fault_features;
   if (!strata.faults_file.empty()) {
     try {
-      fault_features = geo::read_vector(strata.faults_file, model_wkt);
+      fault_features = read_fault_file(strata.faults_file, model_wkt);
     } catch (const InputError& e) {
       throw InputError(strata.file, fmt::format("faults: {}", e.what()));
     }
@@ -421,17 +421,16 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
     pm.cut_faults.push_back(std::move(tr));
   };
   if (fault_features)
-    for (const auto& feat : fault_features->features) {
-      const FaultRange* r = table_of(feat.text_of("name").value_or(""));
-      if (!feature_has_dip(feat) && !(r && r->has_dip())) continue;
-      const std::string where = fmt::format("{}: feature {}", strata.faults_file, feat.fid);
+    for (const auto& feat : *fault_features) {
+      const FaultRange* r = table_of(feat.name);
+      if (!feat.has_dip() && !(r && r->has_dip())) continue;
       FaultTrace tr;
-      if (feature_has_dip(feat)) {
-        tr = fault_trace_from_feature(feat, where);
+      if (feat.has_dip()) {
+        tr = fault_trace_from_record(feat, "a dipping fault needs");
       } else {
-        tr.where = where;
-        tr.name = feat.text_of("name").value_or("");
-        for (const auto& l : feat.lines) tr.parts.emplace_back(l.begin(), l.end());
+        tr.where = feat.where;
+        tr.name = feat.name;
+        tr.parts = feat.lines;
         tr.trace_z = r->top;
       }
       const bool line = plan.find_line_group("fault:" + tr.name) != nullptr;
@@ -532,17 +531,14 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
         found = true;
       }
       if (!found && fault_features) {
-        for (const auto& feat : fault_features->features) {
-          if (feat.text_of("name") != f.name) continue;
-          const auto top = feat.number_of("top_m"), bottom = feat.number_of("bottom_m");
-          if (!top || !bottom)
-            throw InputError(strata.faults_file, fmt::format("fault '{}' (feature {}) needs numeric top_m and bottom_m",
-                                                             f.name, feat.fid));
-          if (!(*top >= *bottom))
-            throw InputError(strata.faults_file, fmt::format("fault '{}' (feature {}): bottom_m lies above top_m",
-                                                             f.name, feat.fid));
-          f.top = *top;
-          f.bottom = *bottom;
+        for (const auto& feat : *fault_features) {
+          if (feat.name != f.name) continue;
+          if (!feat.has_depth_range())
+            throw InputError(feat.where, fmt::format("fault '{}': missing field '{}' (ugs-meshgen needs the depth range "
+                                                     "top_m, bottom_m of a vertical fault)",
+                                                     f.name, feat.top ? "bottom_m" : "top_m"));
+          f.top = *feat.top;
+          f.bottom = *feat.bottom;
           found = true;
           break;
         }

@@ -222,5 +222,44 @@ TEST_F(FaultInsertTool, BadInputExitsTwoWithOneLineAndNoOutput) {
   expect_bad(path("skew.msh"), "fault 'skew': triangle");
 }
 
+// Issue 20: one faults file, one schema. A file that ugs-mesh2d and ugs-meshgen accept (names and
+// depth ranges, no dip) was refused with "missing field 'dip_deg'" although the mesh holds the fault
+// groups and the file then only gives the reference normal.
+TEST_F(FaultInsertTool, FaultsFileWithoutDipsWhenTheMeshHasTheGroups) {
+  Mesh m = two_fault_box();
+  write_msh(m, path("in.msh"));
+  spit(dir / "faults.geojson", R"({"type":"FeatureCollection","features":[
+{"type":"Feature","properties":{"name":"A","top_m":6,"bottom_m":0},"geometry":{"type":"LineString","coordinates":[[3,0],[3,6]]}},
+{"type":"Feature","properties":{"name":"B","dip_dir_deg":180},"geometry":{"type":"LineString","coordinates":[[0,3],[3,3]]}}]})");
+  const auto r = run(exe() + " " + path("in.msh") + " --faults " + path("faults.geojson") + " -o " + path("out.msh"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Mesh out = read_msh(path("out.msh"));
+  check_faulted(out);
+  expect_glues_back(out, m);
+  EXPECT_EQ(out.count(ElementType::Prism), 96u);  // A 72 + B 24, as from the mesh alone
+  // B's reference normal from dip_dir_deg = 180 (dip 90): side 1 -> side 2 points north (+y), where
+  // the mesh's own rule alone would point it south.
+  for (const auto& b : out.blocks) {
+    if (b.type != ElementType::Prism || out.physical_name_of(b.entity_dim, b.entity_tag) != "fault:B") continue;
+    for (std::size_t e = 0; e < b.size(); ++e) {
+      const auto& x1 = out.nodes[b.element(e)[0]];
+      const auto& x2 = out.nodes[b.element(e)[1]];
+      const auto& x3 = out.nodes[b.element(e)[2]];
+      const double ny = (x2[2] - x1[2]) * (x3[0] - x1[0]) - (x2[0] - x1[0]) * (x3[2] - x1[2]);
+      EXPECT_GT(ny, 0.0);
+    }
+  }
+  // A fault the mesh lacks needs the whole trace: the message says which field and why.
+  write_msh(unit_box(6), path("box.msh"));
+  const auto bad = run(exe() + " " + path("box.msh") + " --faults " + path("faults.geojson") + " -o " + path("bad.msh"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_NE(bad.err.find("faults.geojson: feature 0: fault 'A': missing field 'dip_deg' (the mesh has no fault:A group to use, "
+                         "so the file must give name, top_m, bottom_m, dip_deg, dip_dir_deg)"),
+            std::string::npos)
+      << bad.err;
+  EXPECT_FALSE(fs::exists(path("bad.msh")));
+}
+
 }  // namespace
 }  // namespace ugs::test

@@ -264,7 +264,10 @@ TEST_F(Mesh2dCli, CoordinateThatIsNotANumberIsRefused) {
   "coordinates": [[680500, 4952500], [681000]]}}]})");
   expect_bad(box + p("short.geojson").string(), "feature 1 ('f4'): position [681000] has fewer than 2 numbers");
   test::spit(p("nogeom.geojson"), head + R"({"type": "Feature", "properties": {"name": "f5"}, "geometry": null}]})");
-  expect_bad(box + p("nogeom.geojson").string(), p("nogeom.geojson").string() + ": feature 1 ('f5') has no geometry");
+  expect_bad("--box 680000/686000/4950000/4954000 --hmax 800 --section " + p("nogeom.geojson").string(),
+             p("nogeom.geojson").string() + ": feature 1 ('f5') has no geometry");
+  expect_bad(box + p("nogeom.geojson").string(),
+             p("nogeom.geojson").string() + ": feature 1: fault 'f5': the feature is not a line");
 }
 
 // Issue 20: a GeoJSON file without "crs" is WGS 84 longitude/latitude for GDAL (RFC 7946); with

@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
   app.add_option("mesh", opt.input, "Tetrahedral mesh (MSH 4.1, ASCII or binary; '-' = stdin)")->capture_default_str();
   tool.add_output("-", "Faulted mesh, binary MSH 4.1");
   app.add_option("--faults", opt.faults,
-                 "Fault traces (any OGR vector file): lines with name, top_m, bottom_m, dip_deg, dip_dir_deg "
-                 "[, trace_z_m]; the mesh faces on each surface become the fault");
+                 "Faults file (any OGR vector file, the one of ugs-mesh2d and ugs-meshgen): lines with name and, for a "
+                 "fault the mesh has no fault:<name> group for, top_m, bottom_m, dip_deg, dip_dir_deg [, trace_z_m]: "
+                 "the mesh faces on its surface become the fault");
   app.add_option("--only", opt.only, "Insert only these faults (comma-separated names); default: all")->delimiter(',');
   app.add_option("--tolerance", opt.tolerance,
                  "Distance (m) within which a face lies on a trace surface; default 1 % of the shortest edge at each node")
@@ -95,8 +96,24 @@ int main(int argc, char** argv) {
     if (!opt.faults.empty()) {
       t = clock::now();
       const std::string wkt = opt.crs.empty() ? "" : ugs::geo::crs_wkt(opt.crs, "--crs");
-      for (auto& tr : ugs::read_fault_traces(opt.faults, wkt))
-        if (only.empty() || std::find(only.begin(), only.end(), tr.name) != only.end()) traces.push_back(std::move(tr));
+      // The faults file of ugs-mesh2d and ugs-meshgen, read with the same reader and schema
+      // (docs/faults.md): a fault the mesh already holds as fault:<name> triangles needs from the
+      // file only its reference normal (dip_dir_deg, and dip_deg or 90); one the mesh lacks needs
+      // the whole trace (top_m, bottom_m, dip_deg, dip_dir_deg).
+      const auto in_mesh = ugs::fault_triangle_groups(mesh);
+      for (const auto& rec : ugs::read_fault_file(opt.faults, wkt)) {
+        if (!only.empty() && std::find(only.begin(), only.end(), rec.name) == only.end()) continue;
+        const bool mesh_has = std::find(in_mesh.begin(), in_mesh.end(), rec.name) != in_mesh.end();
+        const bool full = rec.has_depth_range() && rec.has_dip() && rec.dip_dir_deg;
+        if (mesh_has && !full) {
+          if (const auto n = ugs::record_reference_normal(rec)) ins.reference_normals[rec.name] = *n;
+          ugs::cli::detail("fault '{}': the mesh's fault:{} triangles; {}", rec.name, rec.name,
+                           rec.dip_dir_deg ? "reference normal from the file" : "no dip_dir_deg in the file: mesh orientation");
+          continue;
+        }
+        traces.push_back(ugs::fault_trace_from_record(
+            rec, fmt::format("the mesh has no fault:{} group to use, so the file must give", rec.name)));
+      }
       ugs::FaultSelectOptions sel;
       sel.source = source;
       sel.tolerance = opt.tolerance;

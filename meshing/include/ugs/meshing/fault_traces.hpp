@@ -9,6 +9,7 @@
 // (segment, piece) pair is a planar panel and successive pieces meet along horizontal lines.
 #pragma once
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,14 +54,31 @@ void check_fault_trace(FaultTrace& trace);
 // the listric pieces; then dip_deg may be left out) and ends_against (name of another fault).
 std::vector<FaultTrace> read_fault_traces(const std::string& path, const std::string& model_wkt = "");
 
-namespace geo {
-struct Feature;
-}
-// One trace from one OGR feature (fields as above), checked. `where` names it in messages.
-FaultTrace fault_trace_from_feature(const geo::Feature& feature, const std::string& where);
-// Does the feature carry a dip (dip_deg or listric fields)? Features without one only give a depth
-// range to a plan fault line (a vertical fault of ugs-meshgen).
-bool feature_has_dip(const geo::Feature& feature);
+// One faults file, one schema, read the same way by ugs-mesh2d, ugs-meshgen and ugs-faultinsert
+// (docs/faults.md says which fields each tool uses): every feature is a (multi)line with a `name`
+// ("fault:" prefix dropped, unique in the file); the other fields are optional, and each one given
+// is checked the same way for every tool: top_m, bottom_m (top_m >= bottom_m), dip_deg in (0, 90],
+// dip_dir_deg, trace_z_m, listric_bottom_m and listric_dip_deg (lists of one length, together),
+// size_m > 0, ends_against (text). Numbers may be stored as text ("35"); all must be finite.
+struct FaultRecord {
+  std::string name;
+  std::string where;                                  // "faults.geojson: feature 3"
+  std::vector<std::vector<std::array<double, 2>>> lines;  // in the model CRS
+  std::optional<double> top, bottom, dip_deg, dip_dir_deg, trace_z, size;
+  std::vector<double> listric_bottom, listric_dip;
+  std::string ends_against;
+  bool has_dip() const { return dip_deg.has_value() || !listric_dip.empty(); }
+  bool has_depth_range() const { return top.has_value() && bottom.has_value(); }
+};
+std::vector<FaultRecord> read_fault_file(const std::string& path, const std::string& model_wkt = "",
+                                         const std::string& name_field = "name");
+// The trace of a record, for a tool that builds the surface from the file: needs top_m, bottom_m,
+// dip_deg (or the listric fields) and dip_dir_deg; `why` says what it is needed for in the message.
+FaultTrace fault_trace_from_record(const FaultRecord& record, const std::string& why = "a trace needs");
+// Side 1 -> side 2 reference normal of a record for a fault whose surface comes from the mesh:
+// from dip_deg (90 when absent: ugs-meshgen builds faults without a dip vertical) and dip_dir_deg;
+// nullopt without dip_dir_deg (the mesh's own orientation rule applies).
+std::optional<Point3> record_reference_normal(const FaultRecord& record);
 
 // The trace surface as planar panels.
 class FaultSurface {
