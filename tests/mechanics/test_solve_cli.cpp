@@ -135,6 +135,14 @@ void poke(const std::string& file, std::string dataset, std::size_t index, T val
   H5Fclose(f);
 }
 
+// Removes a link (a dataset) from an HDF5 file.
+void unlink(const std::string& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << file;
+  EXPECT_GE(H5Ldelete(f, name.c_str(), H5P_DEFAULT), 0) << name;
+  H5Fclose(f);
+}
+
 // Sets the time attribute of the n-th step of a field series.
 void poke_time(const std::string& file, int step, double t) {
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
@@ -574,14 +582,23 @@ TEST(SolveTool, WarningsOnlyOnceTheInputsAreChecked) {
   ASSERT_EQ(test::run(test::make_case() + " small " + (d.path / "other").string()).exit_code, 0);
   test::spit(d / "fault.toml", test::slurp(d / "case.toml") + "\n[[fault]]\nname = \"F1\"\n");
   const std::string warning = "fault.toml: [[fault]] entries are ignored by the continuous model";
+  // A pressure file whose third step lost its dp (the mutation test found the warning before
+  // that error too: the steps were read during the run).
+  fs::copy_file(d / "flow.h5", d / "flow_nodp.h5");
+  unlink(d / "flow_nodp.h5", "/steps/000002/node/dp");
   // Bad input: the error line only.
-  for (const std::string& extra : {" --pressure " + d / "other/flow_pool_c.h5", " --pressure " + d / "flow.h5" + " --restart " + d / "nothing.h5"}) {
+  for (const std::string& extra : {" --pressure " + d / "other/flow_pool_c.h5", " --pressure " + d / "flow.h5" + " --restart " + d / "nothing.h5",
+                                   " --pressure " + d / "flow_nodp.h5"}) {
     const auto r = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "fault.toml" + extra + " -o " + d / "out.h5");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(r.err.find("[[fault]]"), std::string::npos) << r.err;
   }
+  const auto nodp = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "fault.toml" + " --pressure " +
+                              d / "flow_nodp.h5" + " -o " + d / "out.h5");
+  EXPECT_NE(nodp.err.find("flow_nodp.h5: step 2 (2002-01-01) has no node field 'dp' (the first step has one)"), std::string::npos)
+      << nodp.err;
   // Good input: the warning, once.
   const auto r = test::run(test::solve_cmd() + " " + column_args(d, "fault.toml") + " -o " + d / "out.h5");
   EXPECT_EQ(r.exit_code, 0) << r.err;

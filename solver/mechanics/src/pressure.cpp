@@ -152,6 +152,12 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
         throw InputError(p, fmt::format("step {} ({}): time {} is not a finite number of seconds", s, st[s].date, st[s].time));
       if (s > 0 && !(st[s].time > st[s - 1].time))
         throw InputError(p, fmt::format("step {} ({}) is not later than step {} ({})", s, st[s].date, s - 1, st[s - 1].date));
+      // Every step holds dp (a listing, no values read): a damaged later step is found before the
+      // run starts, not after hours of it.
+      const auto names = f->cells ? f->reader->cell_field_names(s) : f->reader->node_field_names(s);
+      if (std::find(names.begin(), names.end(), "dp") == names.end())
+        throw InputError(p, fmt::format("step {} ({}) has no {} field 'dp' (the first step has one)", s, st[s].date,
+                                        f->cells ? "cell" : "node"));
       f->times.push_back(st[s].time);
       dates.emplace(st[s].time, st[s].date);
     }
