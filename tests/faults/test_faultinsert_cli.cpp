@@ -261,5 +261,18 @@ TEST_F(FaultInsertTool, FaultsFileWithoutDipsWhenTheMeshHasTheGroups) {
   EXPECT_FALSE(fs::exists(path("bad.msh")));
 }
 
+// Issue 20: numeric options finite and in range, one readable line (CLI11's range check printed
+// DBL_MAX in full).
+TEST_F(FaultInsertTool, NonFiniteOptionsAreRefused) {
+  write_msh(two_fault_box(), path("in.msh"));
+  for (const char* v : {"inf", "nan", "-1"}) {
+    const auto r = run(exe() + " " + path("in.msh") + " --tolerance " + v + " -o " + path("out.msh"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, fmt::format("ugs-faultinsert: error: --tolerance: must be a distance in metres, >= 0 (0: the default), "
+                                 "got {}\n", v));
+    EXPECT_FALSE(fs::exists(path("out.msh")));
+  }
+}
+
 }  // namespace
 }  // namespace ugs::test

@@ -360,3 +360,13 @@ TEST(FlowCli, NonFiniteAndOutOfRangeNumbers) {
     EXPECT_FALSE(fs::exists(c.dir / "dp_influx.csv"));
   }
 }
+
+// Issue 20: numeric options are finite and in range too (--reference-pressure inf made dp_norm 0
+// everywhere with exit 0; --max-step inf overflowed to a negative step).
+TEST(FlowCli, NonFiniteOptionsAreRefused) {
+  const Case c = make_case("nf-opts");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --reference-pressure inf")), "--reference-pressure", "got inf");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --reference-pressure nan")), "--reference-pressure", "got nan");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --max-step inf")), "--max-step", "must be a number of days in (0, 36525], got inf");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --calibrate-tolerance nan")), "--calibrate-tolerance", "got nan");
+}

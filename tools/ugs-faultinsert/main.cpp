@@ -67,8 +67,7 @@ int main(int argc, char** argv) {
                  "the mesh faces on its surface become the fault");
   app.add_option("--only", opt.only, "Insert only these faults (comma-separated names); default: all")->delimiter(',');
   app.add_option("--tolerance", opt.tolerance,
-                 "Distance (m) within which a face lies on a trace surface; default 1 % of the shortest edge at each node")
-      ->check(CLI::PositiveNumber);
+                 "Distance (m) within which a face lies on a trace surface; default 1 % of the shortest edge at each node");
   app.add_option("--min-coverage", opt.min_coverage, "Percentage of a trace surface inside the model that mesh faces must cover")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
@@ -77,6 +76,10 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     using clock = std::chrono::steady_clock;
+    if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance))
+      throw ugs::InputError("--tolerance", fmt::format("must be a distance in metres, >= 0 (0: the default), got {}", opt.tolerance));
+    if (!(opt.min_coverage >= 0 && opt.min_coverage <= 100))
+      throw ugs::InputError("--min-coverage", fmt::format("must be a percentage in [0, 100], got {}", opt.min_coverage));
     auto t = clock::now();
     ugs::Mesh mesh = ugs::read_msh(opt.input);
     const std::string source = opt.input == "-" ? "<stdin>" : opt.input;

@@ -173,7 +173,12 @@ void run(const Options& o, cli::Tool& tool) {
   }
 
   // 2. Schedules and the time grid.
-  if (!(o.max_step_days > 0)) throw InputError("--max-step", "must be positive");
+  if (!(o.max_step_days > 0) || !(o.max_step_days <= 36525))
+    throw InputError("--max-step", fmt::format("must be a number of days in (0, 36525], got {}", o.max_step_days));
+  if (!(o.reference_MPa >= 0) || !std::isfinite(o.reference_MPa))
+    throw InputError("--reference-pressure", fmt::format("must be a pressure in MPa, > 0, got {}", o.reference_MPa));
+  if (!(o.calibrate_tolerance > 0 && o.calibrate_tolerance < 1))
+    throw InputError("--calibrate-tolerance", fmt::format("must lie in (0, 1), got {}", o.calibrate_tolerance));
   ScheduleLimits lim{static_cast<std::int64_t>(std::llround(o.max_step_days * 86400))};
   std::vector<PoolSchedule> schedules;
   for (const auto& p : fm.pools) {

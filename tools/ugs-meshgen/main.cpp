@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     Stopwatch clock;
+    if (!(opt.small_angle > 0 && opt.small_angle < 90))
+      throw ugs::InputError("--small-angle", fmt::format("must be an angle in (0, 90) degrees, got {}", opt.small_angle));
     if (tool.output() == "-" && !opt.ascii && ::isatty(STDOUT_FILENO))
       throw ugs::InputError("-o", "refusing to write a binary mesh to a terminal: redirect stdout, use -o FILE or --ascii");
 
