@@ -456,6 +456,18 @@ struct FieldSeriesReader::Impl {
     h5::Id type(H5Dget_type(ds.get()), H5Tclose);
     if (!type.valid() || !plain_number_type(type.get()))
       fail(fmt::format("{}: not stored as plain numbers (expected integers or IEEE floats of 1 to 8 bytes)", name));
+    // Chunks larger than the array (a damaged layout message) make HDF5 copy past its chunk buffer.
+    h5::Id dcpl(H5Dget_create_plist(ds.get()), H5Pclose);
+    if (count > 0 && dcpl.valid() && H5Pget_layout(dcpl.get()) == H5D_CHUNKED) {
+      hsize_t chunk[2] = {0, 0};
+      const int rank = H5Pget_chunk(dcpl.get(), 2, chunk);
+      bool fits = rank == static_cast<int>(d.size());
+      for (std::size_t k = 0; fits && k < d.size(); ++k) fits = chunk[k] >= 1 && chunk[k] <= d[k];
+      if (!fits)
+        fail(fmt::format("{}: its chunks ({}) do not fit its shape ({}) (damaged file?)", name,
+                         fmt::join(std::span(chunk, static_cast<std::size_t>(std::clamp(rank, 0, 2))), " x "),
+                         fmt::join(d, " x ")));
+    }
     const hsize_t bytes = count * H5Tget_size(type.get());
     if (bytes > kMaxExpansion * H5Dget_storage_size(ds.get()) + (1 << 20))
       fail(fmt::format("{} claims {} values but stores only {} bytes (damaged file?)", name, count,

@@ -51,6 +51,14 @@ TEST(FuzzRegressions, HugeIntegerTypeIsRefused) {
             path + ": /mesh/prisms: not stored as plain numbers (expected integers or IEEE floats of 1 to 8 bytes)");
 }
 
+// /mesh/tetrahedra (6 x 4) with chunks of 6 x 524548 (a mutated layout message): HDF5 copied past its
+// chunk buffer (ASan SEGV in H5VM_memcpyvv under H5D__select_read).
+TEST(FuzzRegressions, ChunkLargerThanArrayIsRefused) {
+  const std::string path = kCorpus + "hdf5_fields/regress-chunk-larger-than-array.h5";
+  EXPECT_EQ(read_all_fields(path),
+            path + ": /mesh/tetrahedra: its chunks (6 x 524548) do not fit its shape (6 x 4) (damaged file?)");
+}
+
 // A step's 'time' attribute with two values was read into one double (stack overflow).
 TEST(FuzzRegressions, TimeAttributeWithTwoValuesIsRefused) {
   const std::string path = kCorpus + "hdf5_fields/regress-time-two-values.h5";
