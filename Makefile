@@ -30,7 +30,7 @@ test-asan: deps
 # The libFuzzer targets, FUZZ_SECONDS each, in their own clang tree (docs/fuzzing.md: the release run).
 FUZZ_SECONDS ?= 600
 fuzz: deps
-	/usr/bin/python3 tests/fuzz/run_fuzz.py --source $(CURDIR) --build $(CURDIR)/build-fuzz --seconds $(FUZZ_SECONDS) --jobs $(JOBS)
+	/usr/bin/python3 tests/fuzz/run_fuzz.py --source $(CURDIR) --build $(CURDIR)/build-fuzz --seconds $(FUZZ_SECONDS) --fuzz-seed 0 --jobs $(JOBS)
 
 # The faulted run goes alongside the continuous one and the calibration (make -j).
 demo: build

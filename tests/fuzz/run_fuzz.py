@@ -4,7 +4,7 @@
     run_fuzz.py --source SRC --build DIR [--cc clang-14 --cxx clang++-14] [--seconds 5] [--jobs 2]
                 [--targets msh,csv] [--no-build]
 
-Each target runs -max_total_time=SECONDS on corpus/<target> (read only: new inputs go to
+Each target runs -max_total_time=SECONDS -seed=1 (--fuzz-seed) on corpus/<target> (read only: new inputs go to
 DIR/corpus/<target>, crashes to DIR/artifacts/), with -rss_limit_mb=2048 -timeout=10 and the
 target's dictionary when there is one. Exit status 1 and the crashing inputs listed when any target
 reports a finding (crash, ASan/UBSan report, leak, uncaught exception, timeout, out of memory).
@@ -32,6 +32,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--targets", default=",".join(TARGETS))
     ap.add_argument("--no-build", action="store_true")
+    ap.add_argument("--fuzz-seed", type=int, default=1,
+                    help="libFuzzer -seed (1: the same mutations every run, as in CI; 0: a new seed each run)")
     a = ap.parse_args()
     here = os.path.join(a.source, "tests", "fuzz")
     targets = [t for t in a.targets.split(",") if t]
@@ -69,7 +71,7 @@ def main():
         os.makedirs(work, exist_ok=True)
         os.makedirs(arts, exist_ok=True)
         cmd = [exe, f"-max_total_time={a.seconds}", "-rss_limit_mb=2048", "-timeout=10",
-               f"-artifact_prefix={arts}/{t}-", "-print_final_stats=1"]
+               f"-artifact_prefix={arts}/{t}-", "-print_final_stats=1", f"-seed={a.fuzz_seed}"]
         if t in DICTS:
             cmd.append("-dict=" + os.path.join(here, "dict", DICTS[t]))
         cmd += [work, seeds]
