@@ -15,6 +15,9 @@
 namespace ugs {
 namespace {
 
+// The largest node coordinate a mesh may hold, in metres (the Earth is 4e7 m around).
+constexpr double kMaxCoordinate = 1e9;
+
 class MshReader {
 public:
   MshReader(InputStream& in, const MshLimits& limits) : in_(in), limits_(limits) {}
@@ -245,6 +248,13 @@ private:
         if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
           throw binary_ ? err_at(at, fmt::format("node {} has a non-finite coordinate", tags[i]))
                         : err(fmt::format("node {} has a non-finite coordinate", tags[i]));
+        // Coordinates are metres in a projected CRS: beyond kMaxCoordinate a value is damage, and
+        // volumes and Jacobians of such nodes would overflow to inf.
+        if (std::abs(x[0]) > kMaxCoordinate || std::abs(x[1]) > kMaxCoordinate || std::abs(x[2]) > kMaxCoordinate) {
+          const std::string what = fmt::format("node {} has a coordinate ({:g}, {:g}, {:g}) beyond +-{:g} m (expected metres "
+                                               "in a projected CRS)", tags[i], x[0], x[1], x[2], kMaxCoordinate);
+          throw binary_ ? err_at(at, what) : err(what);
+        }
         if (tags[i] == 0)
           throw binary_ ? err_at(tags_at + 8 * i, "node tag 0 is not allowed") : err("node tag 0 is not allowed");
         mesh_.node_tags.push_back(tags[i]);

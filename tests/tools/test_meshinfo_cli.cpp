@@ -140,6 +140,12 @@ TEST_F(MeshinfoCli, NanCoordinate) { expect_bad(replace(ascii_, "\n1 1 1\n", "\n
 
 TEST_F(MeshinfoCli, InfCoordinate) { expect_bad(replace(ascii_, "\n1 1 1\n", "\n1 inf 1\n"), "non-finite coordinate"); }
 
+// A finite but absurd coordinate (damage: 8 bytes of 0xff across two doubles gave -1.6e305) made the
+// tetrahedron volumes overflow: "min -inf max inf total -nan" with exit 0 (found by mutation_tools).
+TEST_F(MeshinfoCli, HugeCoordinate) {
+  expect_bad(replace(ascii_, "\n1 1 1\n", "\n1 -1.6e305 1\n"), "beyond +-1e+09 m (expected metres in a projected CRS)");
+}
+
 TEST_F(MeshinfoCli, ElementReferringToMissingNode) {
   const auto pos = ascii_.find("$Elements");
   std::string s = ascii_;
