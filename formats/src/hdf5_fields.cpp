@@ -546,6 +546,20 @@ struct FieldSeriesReader::Impl {
     return link_names(g.get(), where);
   }
 
+  // What field() checks before it reads: the dataset opens, holds plain numbers, one row per
+  // node or cell. Metadata only, so a whole series can be checked before a long run.
+  void check_field(std::size_t step, const std::string& name, const char* kind, std::size_t count) const {
+    const std::string where = fmt::format("/steps/{}/{}/{}", groups.at(step), kind, name);
+    h5::Id ds(H5Dopen2(file.get(), where.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!ds.valid()) fail(fmt::format("no dataset {}", where));
+    const std::vector<hsize_t> d = dims(ds.get(), where);
+    h5::Id type(H5Dget_type(ds.get()), H5Tclose);
+    if (!type.valid() || !plain_number_type(type.get()))
+      fail(fmt::format("{}: not stored as plain numbers (expected integers or IEEE floats of 1 to 8 bytes)", where));
+    if (d.empty() || d[0] != count)
+      fail(fmt::format("{}: {} values, the mesh has {} {}s", where, d.empty() ? 0 : d[0], count, kind));
+  }
+
   Field field(std::size_t step, const std::string& name, const char* kind, std::size_t count) const {
     const std::vector<std::string> names = field_names(step, kind);
     if (std::find(names.begin(), names.end(), name) == names.end())
@@ -640,6 +654,13 @@ Field FieldSeriesReader::node_field(std::size_t step, const std::string& name) c
 Field FieldSeriesReader::cell_field(std::size_t step, const std::string& name) const {
   h5::QuietErrors quiet;
   return impl_->field(step, name, "cell", impl_->num_cells);
+}
+
+void FieldSeriesReader::check_field(std::size_t step, const std::string& name, bool cells) const {
+  h5::QuietErrors quiet;
+  impl_->step_date(step);
+  if (cells) impl_->check_field(step, name, "cell", impl_->num_cells);
+  else impl_->check_field(step, name, "node", impl_->num_nodes);
 }
 
 }  // namespace ugs

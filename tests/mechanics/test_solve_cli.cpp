@@ -143,6 +143,17 @@ void unlink(const std::string& file, const std::string& name) {
   H5Fclose(f);
 }
 
+// Replaces a dataset by a group of the same name (a listing still shows it; it does not open as data).
+void replace_by_group(const std::string& file, const std::string& name) {
+  unlink(file, name);
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << file;
+  const hid_t g = H5Gcreate2(f, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  EXPECT_GE(g, 0) << name;
+  H5Gclose(g);
+  H5Fclose(f);
+}
+
 // Sets the time attribute of the n-th step of a field series.
 void poke_time(const std::string& file, int step, double t) {
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
@@ -586,9 +597,12 @@ TEST(SolveTool, WarningsOnlyOnceTheInputsAreChecked) {
   // that error too: the steps were read during the run).
   fs::copy_file(d / "flow.h5", d / "flow_nodp.h5");
   unlink(d / "flow_nodp.h5", "/steps/000002/node/dp");
+  // ... or whose third step's dp is listed but is no dataset (mutation_tools, replay solve:707007).
+  fs::copy_file(d / "flow.h5", d / "flow_dpgroup.h5");
+  replace_by_group(d / "flow_dpgroup.h5", "/steps/000002/node/dp");
   // Bad input: the error line only.
   for (const std::string& extra : {" --pressure " + d / "other/flow_pool_c.h5", " --pressure " + d / "flow.h5" + " --restart " + d / "nothing.h5",
-                                   " --pressure " + d / "flow_nodp.h5"}) {
+                                   " --pressure " + d / "flow_nodp.h5", " --pressure " + d / "flow_dpgroup.h5"}) {
     const auto r = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "fault.toml" + extra + " -o " + d / "out.h5");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << r.err;
@@ -599,6 +613,9 @@ TEST(SolveTool, WarningsOnlyOnceTheInputsAreChecked) {
                               d / "flow_nodp.h5" + " -o " + d / "out.h5");
   EXPECT_NE(nodp.err.find("flow_nodp.h5: step 2 (2002-01-01) has no node field 'dp' (the first step has one)"), std::string::npos)
       << nodp.err;
+  const auto group = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "fault.toml" + " --pressure " +
+                               d / "flow_dpgroup.h5" + " -o " + d / "out.h5");
+  EXPECT_NE(group.err.find("flow_dpgroup.h5: no dataset /steps/000002/node/dp"), std::string::npos) << group.err;
   // Good input: the warning, once.
   const auto r = test::run(test::solve_cmd() + " " + column_args(d, "fault.toml") + " -o " + d / "out.h5");
   EXPECT_EQ(r.exit_code, 0) << r.err;

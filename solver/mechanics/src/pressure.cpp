@@ -158,6 +158,7 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
       if (std::find(names.begin(), names.end(), "dp") == names.end())
         throw InputError(p, fmt::format("step {} ({}) has no {} field 'dp' (the first step has one)", s, st[s].date,
                                         f->cells ? "cell" : "node"));
+      f->reader->check_field(s, "dp", f->cells);  // the dataset opens and has one value per node/cell
       f->times.push_back(st[s].time);
       dates.emplace(st[s].time, st[s].date);
     }

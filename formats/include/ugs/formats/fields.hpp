@@ -90,6 +90,9 @@ public:
   // InputError "r.h5: no node field 'dp' at step 1964-01-01" if absent.
   Field node_field(std::size_t step, const std::string& name) const;
   Field cell_field(std::size_t step, const std::string& name) const;
+  // InputError unless node_field / cell_field(step, name) would find a readable dataset of the right
+  // length; reads no values (for checking a whole series before a long run).
+  void check_field(std::size_t step, const std::string& name, bool cells) const;
 
 private:
   struct Impl;
