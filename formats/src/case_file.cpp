@@ -20,6 +20,13 @@ MaterialLaw parse_law(const TomlTable& t) {
   throw t.error("law", fmt::format("'{}' is not one of linear, elastic, hypoplastic", s));
 }
 
+// An integer key in [lo, hi], checked before it is narrowed to int (4294967297 must not become 1).
+int integer_in(const TomlTable& t, const std::string& key, long long fallback, long long lo, long long hi) {
+  const long long v = t.integer_opt(key).value_or(fallback);
+  if (v < lo || v > hi) throw t.error(key, fmt::format("must lie in [{}, {}], got {}", lo, hi, v));
+  return static_cast<int>(v);
+}
+
 double positive(const TomlTable& t, const std::string& key, double v) {
   if (!(v > 0) || !std::isfinite(v)) throw t.error(key, fmt::format("must be positive, got {}", v));
   return v;
@@ -187,16 +194,14 @@ CaseFile read_case_file(const std::string& path) {
     s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
                        "reuse_preconditioner", "fault_solver", "steps", "turning_point_tolerance_MPa"});
     c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8));
-    c.max_newton_iterations = static_cast<int>(s->integer_opt("max_newton_iterations").value_or(25));
+    c.max_newton_iterations = integer_in(*s, "max_newton_iterations", 25, 1, 1000000000);  // (ugs-solve: at most 1000)
     c.linear_solver = s->string_opt("linear_solver").value_or("cg-hypre");
     if (!std::set<std::string>{"cg-gamg", "cg-hypre", "mumps", "cholmod"}.count(c.linear_solver))
       throw s->error("linear_solver", "must be one of cg-gamg, cg-hypre, mumps, cholmod");
     c.inversion_rule = s->string_opt("inversion_rule").value_or("sigma-max");
     if (!std::set<std::string>{"sigma-max", "sigma-inversion", "stress-dependent"}.count(c.inversion_rule))
       throw s->error("inversion_rule", "must be one of sigma-max, sigma-inversion, stress-dependent");
-    if (c.max_newton_iterations < 1) throw s->error("max_newton_iterations", "must be at least 1");
-    c.max_substeps = static_cast<int>(s->integer_opt("max_substeps").value_or(64));
-    if (c.max_substeps < 1 || c.max_substeps > 4096) throw s->error("max_substeps", "must lie in [1, 4096]");
+    c.max_substeps = integer_in(*s, "max_substeps", 64, 1, 4096);
     c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true);
     c.steps = s->string_opt("steps").value_or("every-date");
     if (c.steps != "every-date" && c.steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");
@@ -231,8 +236,7 @@ CaseFile read_case_file(const std::string& path) {
           throw o->error("fields", fmt::format("unknown field '{}' (displacement, strain, stress, stress_change, cm, state, "
                                                "pressure)", f));
     }
-    c.checkpoint_every = static_cast<int>(o->integer_opt("checkpoint_every").value_or(0));
-    if (c.checkpoint_every < 0) throw o->error("checkpoint_every", "must not be negative");
+    c.checkpoint_every = integer_in(*o, "checkpoint_every", 0, 0, 1000000);
   }
   return c;
 }

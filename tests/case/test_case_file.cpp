@@ -57,6 +57,12 @@ TEST(CaseFile, NonPhysicalValuesAreRefused) {
   EXPECT_NE(error_of("[[fault]]\nname = \"f\"\nfriction_deg = 95\n").find("(0, 90)"), std::string::npos);
   EXPECT_NE(error_of("[[fault]]\nname = \"f\"\ncohesion_MPa = -1\n").find("must not be negative"), std::string::npos);
   EXPECT_NE(error_of("[boundary]\nfixed = [\"wes\"]\n").find("unknown boundary 'wes'"), std::string::npos);
+  // Integers are checked before they are narrowed to int: 2^32 + 1 was read as 1.
+  EXPECT_NE(error_of("[solver]\nmax_newton_iterations = 4294967297\n").find("must lie in [1, 1000000000], got 4294967297"),
+            std::string::npos);
+  EXPECT_NE(error_of("[solver]\nmax_substeps = 4294967297\n").find("must lie in [1, 4096], got 4294967297"), std::string::npos);
+  EXPECT_NE(error_of("[output]\ncheckpoint_every = -4294967295\n").find("must lie in [0, 1000000], got -4294967295"),
+            std::string::npos);
 }
 
 TEST(CaseFile, SyntaxErrorNamesTheLine) {
