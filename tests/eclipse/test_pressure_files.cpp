@@ -144,3 +144,26 @@ TEST_F(PressureFiles, TwoCellFieldsOnOneElementAreRefused) {
                                          "precedence over a node field only");
   }
 }
+
+// A cell tag twice in one file: the element would silently take the later entry's pressure.
+TEST_F(PressureFiles, CellTagTwiceInOneFileIsRefused) {
+  Mesh s = sub_mesh(mesh_, {model_.tet_tags[0], model_.tet_tags[1]});
+  ASSERT_EQ(s.blocks.size(), 1u);
+  ASSERT_EQ(s.blocks[0].tags.size(), 2u);
+  s.blocks[0].tags[1] = s.blocks[0].tags[0];
+  {
+    FieldSeriesOptions o;
+    o.cell_types = {ElementType::Tetrahedron};
+    FieldSeriesWriter w(path("twice.h5"), s, o);
+    const Field zero{"dp", 1, std::vector<double>(w.cell_count(), 0.0)};
+    w.add_step("2020-01-01", when("2020-01-01"), {}, std::span<const Field>(&zero, 1));
+    w.commit();
+  }
+  try {
+    mech::PressureHistory h({path("twice.h5")}, mesh_, model_);
+    FAIL() << "a cell tag twice accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), path("twice.h5") + ": /mesh/cell_tags: cell tag " + std::to_string(model_.tet_tags[0]) +
+                                         " appears twice (entries 0 and 1)");
+  }
+}

@@ -111,6 +111,7 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
       std::vector<char> is_twin(mesh.num_nodes(), 0);
       std::size_t missing = 0;
       std::uint64_t first_missing = 0;
+      std::vector<std::int64_t> entry_of(model.tets.size(), -1);  // (a tag twice is damage, not a later value)
       for (std::size_t c = 0; c < cell_tags.size(); ++c) {
         auto it = tet_of_tag.find(cell_tags[c]);
         if (it == tet_of_tag.end()) {
@@ -118,6 +119,10 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
           continue;
         }
         const std::uint32_t e = it->second;
+        if (entry_of[e] >= 0)
+          throw InputError(p, fmt::format("/mesh/cell_tags: cell tag {} appears twice (entries {} and {})", cell_tags[c],
+                                          entry_of[e], c));
+        entry_of[e] = static_cast<std::int64_t>(c);
         std::array<std::int32_t, 4> fn;
         for (int k = 0; k < 4; ++k) {
           const std::uint32_t m = model.tets[e][k];
