@@ -71,8 +71,8 @@ struct Evaluation {
 
 class Evaluator {
 public:
-  // InputError for a command template without {case} or {out} or with an unknown {placeholder},
-  // or for an input file that cannot be read. Hashes the inputs, then creates the cache folder.
+  // InputError for a command template without {case} or {out} or with a {name} other than case,
+  // out, mesh and dir, or for an input file that cannot be read. Hashes the inputs, then creates the cache folder.
   explicit Evaluator(EvaluatorSetup setup);
 
   // Evaluates each x (up to `jobs` at once), results in the order given; ComputeError naming the
@@ -101,13 +101,13 @@ private:
   std::mutex mutex_;
 };
 
-// InputError for a solver command template without {case} or {out}, with an unknown
-// {placeholder}, or using {mesh} without a mesh.
+// InputError for a solver command template without {case} or {out}, with a {name} other than
+// case, out, mesh and dir, or using {mesh} without a mesh.
 void check_command_template(const std::string& command, bool have_mesh);
 
 // Files a shell command names: every word (or the value of --opt=VALUE) that is an existing regular
 // file, and the program of each simple command looked up in PATH; absolute, sorted, unique.
-// Words holding a {placeholder} are skipped (they are the evaluation's own files).
+// Words holding {case}, {out}, {mesh} or {dir} are skipped (the evaluation substitutes its own files).
 std::vector<std::string> files_named_in_command(const std::string& command);
 
 }  // namespace ugs::insar
