@@ -7,16 +7,17 @@
 #include <stdexcept>
 #include <thread>
 
+#include "vec3.hpp"
+
 namespace ugs {
 namespace {
 
 // The 6 faces as corner cycles (ECLIPSE order: 0-3 one k face, 4-7 the other).
 constexpr int kFaces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}};
 
-inline double det(const Point3& a, const Point3& b, const Point3& c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-}
-inline Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+using vec3::sub;
+// Six times the signed volume spanned by a, b, c.
+inline double det(const Point3& a, const Point3& b, const Point3& c) { return vec3::dot(a, vec3::cross(b, c)); }
 
 // p in the tetrahedron (a, b, c, d), all relative to p's frame; barycentric coordinates >= -tol.
 bool in_tet(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& p, double min_volume) {
