@@ -41,10 +41,10 @@ GrdeclReport export_grdecl(const Grid& grid, const std::string& results, std::ve
   if (dates.size() > 99) throw InputError("--dates", fmt::format("{} dates: at most 99 (keyword names UGSDSM1 .. UGSDSM99)", dates.size()));
   std::vector<std::size_t> steps;
   for (const auto& d : dates) steps.push_back(in.step(d));  // InputError naming the steps there are
-  double unit = 1e5;
-  std::string unit_name = "bar";
-  if (grid.length_unit == "FEET" || grid.length_unit == "FT") unit = 6894.757293168361, unit_name = "psi";
-  if (grid.length_unit == "CM") unit = 101325.0, unit_name = "atm";
+  // The pressure unit of the grid's unit system (METRIC bar, FIELD psi, LAB atm).
+  const bool feet = grid.length_unit == "FEET" || grid.length_unit == "FT", cm = grid.length_unit == "CM";
+  const double unit = eclipse::pressure_unit_pa(feet ? 2 : cm ? 3 : 1, out_path);
+  const std::string unit_name = feet ? "psi" : cm ? "atm" : "bar";
 
   // The tetrahedra of the results' mesh (the first rows of its cell fields when tetrahedra come
   // first, else after the cells of the types before them).
