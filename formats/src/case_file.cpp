@@ -52,7 +52,7 @@ MaterialSpec parse_material(const TomlTable& t) {
   m.Gh_over_Gz = positive(t, "Gh_over_Gz", t.number_or("Gh_over_Gz", 1.0));
   m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2));
   m.cm_b = t.number_or("cm_b", 1.1347);
-  if (!(m.cm_b >= 0) || !std::isfinite(m.cm_b))
+  if (!(m.cm_b >= 0))  // (non-finite numbers are refused by the TOML reader)
     throw t.error("cm_b", fmt::format("must not be negative (c_M = cm_a sigma^-cm_b decreases with stress), got {}", m.cm_b));
   if (t.has("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
   m.sigma_z_min_MPa = positive(t, "sigma_z_min_MPa", t.number_or("sigma_z_min_MPa", 0.1));
@@ -63,7 +63,7 @@ MaterialSpec parse_material(const TomlTable& t) {
     const auto k = t.numbers("K_m_per_s");
     if (k.size() != 3) throw t.error("K_m_per_s", "expected [Kx, Ky, Kz]");
     for (double v : k)
-      if (!(v > 0) || !std::isfinite(v)) throw t.error("K_m_per_s", fmt::format("conductivities must be positive, got {}", v));
+      if (!(v > 0)) throw t.error("K_m_per_s", fmt::format("conductivities must be positive, got {}", v));
     m.K = std::array<double, 3>{k[0], k[1], k[2]};
   }
   if (t.has("porosity")) {

@@ -158,8 +158,8 @@ private:
         throw err("physical name must be quoted");
       if (dim < 0 || dim > 3) throw err(fmt::format("physical group dimension {} out of range", dim));
       if (tag <= 0) throw err(fmt::format("physical tag {} must be positive", tag));
-      for (const auto& g : mesh_.physicals)
-        if (g.dim == dim && g.tag == tag) throw err(fmt::format("physical tag {} of dimension {} is named twice", tag, dim));
+      if (!seen_physicals_.insert({dim, tag}).second)
+        throw err(fmt::format("physical tag {} of dimension {} is named twice", tag, dim));
       mesh_.physicals.push_back({dim, tag, name.substr(1, name.size() - 2)});
     }
   }
@@ -416,6 +416,7 @@ private:
   };
   std::vector<NodeBlock> node_blocks_;
   std::set<std::pair<int, int>> seen_entities_;
+  std::set<std::pair<int, int>> seen_physicals_;  // (dim, tag) of $PhysicalNames
   static constexpr std::uint32_t kMissing = 0xffffffffu;
   InputStream& in_;
   MshLimits limits_;

@@ -38,9 +38,6 @@ struct PressureHistory::File {
     Field f = cells ? reader->cell_field(static_cast<std::size_t>(s), "dp") : reader->node_field(static_cast<std::size_t>(s), "dp");
     if (f.components != 1)
       throw InputError(reader->path(), fmt::format("field 'dp' has {} components, expected 1 (pressure change in Pa)", f.components));
-    if (f.values.size() != count)
-      throw InputError(reader->path(), fmt::format("field 'dp' has {} values, expected {} (one per file {})", f.values.size(), count,
-                                                   cells ? "cell" : "node"));
     check_finite(reader->path(), fmt::format("field 'dp' at step {}", reader->steps()[s].date), f.values, 1, "a pressure change in Pa",
                  kMaxPressureChangePa);
     values[slot] = std::move(f.values);
