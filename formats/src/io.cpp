@@ -32,10 +32,12 @@ std::unique_ptr<InputStream> InputStream::open(const std::string& path, const st
     in->owns_file_ = true;
     in->name_ = path;
   }
+  // (Also for stdin, which a shell can open on a directory.)
   struct stat st {};
-  if (fstat(fileno(in->file_), &st) == 0 && S_ISDIR(st.st_mode))
-    throw InputError(in->name_, "is a directory (expected " + expected + ")");
-  if (fstat(fileno(in->file_), &st) == 0 && S_ISREG(st.st_mode)) in->size_ = static_cast<std::uint64_t>(st.st_size);
+  if (fstat(fileno(in->file_), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) throw InputError(in->name_, "is a directory (expected " + expected + ")");
+    if (S_ISREG(st.st_mode)) in->size_ = static_cast<std::uint64_t>(st.st_size);
+  }
   in->buf_.resize(kBufferSize);
   return in;
 }
