@@ -12,6 +12,6 @@ args=("${@:-100 100 100 100 80 80 78}")
 work=$(mktemp -d "${TMPDIR:-/tmp}/ugs-bench-eclipse.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 "$build/tests/eclipse/eclipse_make_bench_case" "$work" ${args[*]}
-/usr/bin/time -f "wall %e s, peak %M KB" "$build/tools/ugs-import-eclipse/ugs-import-eclipse" -v "$work/BENCH.EGRID" \
+/usr/bin/time -f "wall %e s, cpu %U+%S s, peak %M KB" "$build/tools/ugs-import-eclipse/ugs-import-eclipse" -v "$work/BENCH.EGRID" \
   --mesh "$work/mesh.msh" -o "$work/dp.h5"
 ls -la "$work/BENCH.UNRST" "$work/dp.h5" | awk '{print $5, $9}'
