@@ -1,4 +1,4 @@
-// Writes a synthetic ECLIPSE case and a mechanics mesh for the import bench (bench_import.sh):
+// Writes a synthetic ECLIPSE case and a mechanics mesh for the import bench (bench/import-eclipse/run.sh):
 //   eclipse_make_bench_case DIR NX NY NZ STEPS HEXES_X HEXES_Y HEXES_Z
 // DIR/BENCH.EGRID: NX x NY x NZ corner-point cells of 50 x 50 x 2 m, tops dipping and twisted,
 // every 50th cell inactive, MAPAXES about (600000, 5000000); DIR/BENCH.UNRST: STEPS + 1 report
