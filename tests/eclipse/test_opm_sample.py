@@ -176,6 +176,20 @@ def main():
                   % (run, up, down))
         ratio = b["uz_opm_mean_mm"] / b["uz_flow_mean_mm"]
         check(0.5 < ratio < 2.0, "uplift OPM / flow model at 2003-11-01: %.2f (0.5 .. 2)" % ratio)
+        # ugs-report --compare computes the same means (C++, over the mesh's bnd:top nodes inside the
+        # trace) as compare.py (numpy, over the top file's nodes): they must agree.
+        rep = {}
+        with open(os.path.join(opm, "report", "comparison.csv")) as f:
+            next(f)
+            for line in f:
+                run, date, mean, _ = line.strip().split(",")
+                rep[(run, date)] = float(mean)
+        worst = 0.0
+        for date, r in rows.items():
+            for run, col in (("this run", "uz_opm_mean_mm"), ("schedule-driven flow model", "uz_flow_mean_mm")):
+                got = rep.get((run, date))
+                worst = max(worst, abs(got - (r[col] - a[col])) if got is not None else float("inf"))
+        check(worst < 2e-4, "ugs-report's comparison.csv equals compare.py's mean uplift (largest difference %.2g mm)" % worst)
     return 1 if FAILS else 0
 
 

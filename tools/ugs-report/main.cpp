@@ -113,6 +113,10 @@ int main(int argc, char** argv) {
   app.add_option("--reference-pressure-MPa", o.reference_pressure_MPa, "Normalisation of stress changes (default: the pool's)");
   app.add_option("--exaggeration", o.exaggeration, "Vertical exaggeration of the sections")->capture_default_str();
   app.add_option("--section-zrange", o.section_zrange, "ZMIN/ZMAX of the sections (default: the pool layer +- 150 m)");
+  app.add_option("--compare", o.compare,
+                 "LABEL=FILE (repeat): another run's top-surface series on the same mesh; the report compares the "
+                 "vertical displacement over the trace");
+  app.add_option("--compare-since", o.compare_since, "YYYY-MM-DD: the runs' changes count from this date (default: the first date they share)");
   app.add_option("--calibration", o.calibration, "An ugs-calibrate output folder: its misfit profile and best values");
   app.add_option("--discussion", o.discussion,
                  "Markdown file: why this case's numbers differ from the thesis' (a section of the summary)")
@@ -206,6 +210,7 @@ int main(int argc, char** argv) {
     build_stress(c);
     build_faults(c);
     build_calibration(c);
+    build_comparison(c);
     if (c.figures.empty()) throw InputError(o.results, "nothing to draw: " + (c.notes.empty() ? std::string("?") : c.notes.front()));
 
     // 3. The pictures: plots.py draws every figure of the manifest.

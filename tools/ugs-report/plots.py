@@ -256,6 +256,30 @@ def plot_profile(m, fig):
     return f
 
 
+def plot_compare(m, fig):
+    """Runs side by side: the mean (solid) and peak (dashed) u_z change of each run against time."""
+    f = new_figure(m, fig)
+    ax = f.add_subplot(1, 1, 1)
+    _, rows = read_csv(fig["data"])
+    runs = {}
+    for run, d, mean, peak in rows:
+        runs.setdefault(run, ([], [], []))
+        runs[run][0].append(d)
+        runs[run][1].append(float(mean))
+        runs[run][2].append(float(peak))
+    for i, (run, (d, mean, peak)) in enumerate(runs.items()):
+        t = dates(d)
+        ax.plot(t, mean, "-", color=f"C{i}", lw=1.6, marker="." if len(d) < 30 else None, label=f"{run}: mean")
+        ax.plot(t, peak, "--", color=f"C{i}", lw=1.0, label=f"{run}: peak")
+    ax.set_ylabel(fig["label"])
+    ax.grid(True, lw=0.3, alpha=0.6)
+    locator = mdates.AutoDateLocator()
+    ax.xaxis.set_major_locator(locator)
+    ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
+    ax.legend(loc="best", fontsize=8)
+    return f
+
+
 def main():
     with open(sys.argv[1], encoding="utf-8") as fh:
         m = json.load(fh)
@@ -274,6 +298,8 @@ def main():
             f = plot_faults(m, fig)
         elif kind == "profile":
             f = plot_profile(m, fig)
+        elif kind == "compare":
+            f = plot_compare(m, fig)
         else:
             raise SystemExit(f"plots.py: unknown figure kind {kind!r}")
         f.savefig(fig["png"], dpi=m["dpi"], metadata={"Software": None})

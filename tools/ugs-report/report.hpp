@@ -36,6 +36,8 @@ struct Options {
   std::string fault_dates;               // MIN_DATE,MAX_DATE
   std::string fault_field = "chi";
   std::string calibration;               // ugs-calibrate output folder
+  std::vector<std::string> compare;      // LABEL=FILE: other runs on the same mesh
+  std::string compare_since;             // changes from this date (default: the first shared date)
   std::string discussion;                // Markdown paragraphs comparing the run with the thesis
   double raster_cell = 0;
   std::string map_extent;                // XMIN/XMAX/YMIN/YMAX
@@ -92,6 +94,7 @@ void build_series(Context& c);
 void build_stress(Context& c);
 void build_faults(Context& c);
 void build_calibration(Context& c);
+void build_comparison(Context& c);
 // Writes summary.md and summary.html in the output folder.
 void write_summary(const Context& c);
 
