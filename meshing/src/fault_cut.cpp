@@ -264,17 +264,19 @@ public:
     std::vector<std::pair<double, std::uint32_t>> order;
     for (const auto& [v, t] : score) order.push_back({t, v});
     std::sort(order.begin(), order.end());
-    std::unordered_map<std::uint32_t, std::uint32_t> cand_index;
-    for (std::size_t c = 0; c < order.size(); ++c) cand_index.emplace(order[c].second, static_cast<std::uint32_t>(c));
+    // Candidate number of each node (a dense table: the scans below visit every tetrahedron and
+    // triangle of the model once per panel, where a hash lookup per node cost seconds).
+    std::vector<std::uint32_t> cand_index(X_.size(), none);
+    for (std::size_t c = 0; c < order.size(); ++c) cand_index[order[c].second] = static_cast<std::uint32_t>(c);
     std::vector<std::vector<std::uint32_t>> tets_of(order.size());
     std::vector<std::vector<Point3>> normals(order.size());
     for (std::size_t t = 0; t < T_.size(); ++t)
       for (int k = 0; k < 4; ++k)
-        if (auto it = cand_index.find(T_[t][k]); it != cand_index.end()) tets_of[it->second].push_back(static_cast<std::uint32_t>(t));
+        if (const std::uint32_t c = cand_index[T_[t][k]]; c != none) tets_of[c].push_back(static_cast<std::uint32_t>(t));
     for (const auto& f : F_)
       for (int k = 0; k < 3; ++k)
-        if (auto it = cand_index.find(f[k]); it != cand_index.end())
-          normals[it->second].push_back(unit(cross(sub(X_[f[1]], X_[f[0]]), sub(X_[f[2]], X_[f[0]]))));
+        if (const std::uint32_t c = cand_index[f[k]]; c != none)
+          normals[c].push_back(unit(cross(sub(X_[f[1]], X_[f[0]]), sub(X_[f[2]], X_[f[0]]))));
     static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     for (std::size_t c = 0; c < order.size(); ++c) {
       const std::uint32_t v = order[c].second;
