@@ -117,29 +117,55 @@ private:
   // feature lines: edges of a surface group used by other than two faces, or by two faces that are
   // not coplanar. nullopt-like: returns false when a face is degenerate (v stays).
   bool surfaces_of(std::uint32_t v, Surfaces& out) const {
+    // Flat sorted vectors rather than maps: this runs for every node the collapse and the smoothing
+    // look at (millions of calls at the thesis scale), and the sets are a few dozen entries.
     std::vector<std::pair<std::uint64_t, Face>> faces;
     for (auto i : tris_of_[v]) faces.push_back({s_.tri_group[i], s_.tris[i]});
-    std::map<Face, std::pair<std::uint32_t, int>> around;  // face -> (block, uses)
-    std::map<Face, Face> oriented;
+    struct Around {
+      Face key, tri;
+      std::uint32_t block;
+      std::uint32_t order;  // position among the faces met, for the pairing below
+    };
+    std::vector<Around> around;
+    around.reserve(3 * tets_of_[v].size());
     for (auto t : tets_of_[v])
       for (const auto& f : kFaceOf) {
         const Face tri{s_.tets[t][f[0]], s_.tets[t][f[1]], s_.tets[t][f[2]]};
         if (!has(tri, v)) continue;
-        const Face key = sorted(tri);
-        auto [it, fresh] = around.emplace(key, std::pair{s_.tet_block[t], 1});
-        oriented.emplace(key, tri);
-        if (fresh) continue;
-        ++it->second.second;
-        if (it->second.first != s_.tet_block[t]) {
-          const std::uint64_t lo = std::min(it->second.first, s_.tet_block[t]), hi = std::max(it->second.first, s_.tet_block[t]);
-          faces.push_back({(std::uint64_t{1} << 62) | (lo << 24) | hi, tri});
-        }
+        around.push_back({sorted(tri), tri, s_.tet_block[t], static_cast<std::uint32_t>(around.size())});
       }
-    for (const auto& [key, bu] : around)
-      if (bu.second == 1) faces.push_back({std::uint64_t{1} << 63, oriented.at(key)});
+    std::sort(around.begin(), around.end(), [](const Around& a, const Around& b) {
+      return a.key != b.key ? a.key < b.key : a.order < b.order;
+    });
+    // Faces between two materials in the order they were met (the second use of a key), then the
+    // outer faces (one use) in key order: as the maps this replaces gave them.
+    std::vector<std::pair<std::uint32_t, std::pair<std::uint64_t, Face>>> between;
+    std::vector<std::pair<std::uint64_t, Face>> outer;
+    for (std::size_t i = 0; i < around.size();) {
+      std::size_t j = i + 1;
+      while (j < around.size() && around[j].key == around[i].key) ++j;
+      if (j - i == 1) outer.push_back({std::uint64_t{1} << 63, around[i].tri});
+      for (std::size_t k = i + 1; k < j; ++k)
+        if (around[i].block != around[k].block) {
+          const std::uint64_t lo = std::min(around[i].block, around[k].block), hi = std::max(around[i].block, around[k].block);
+          between.push_back({around[k].order, {(std::uint64_t{1} << 62) | (lo << 24) | hi, around[k].tri}});
+        }
+      i = j;
+    }
+    std::sort(between.begin(), between.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& b : between) faces.push_back(b.second);
+    faces.insert(faces.end(), outer.begin(), outer.end());
     auto exact = [&](std::uint64_t g) { return !(g >= s_.first_fault_group && g < (std::uint64_t{1} << 62)); };
     // Per (group, edge v-w): the faces' normals and third nodes.
-    std::map<std::pair<std::uint64_t, std::uint32_t>, std::vector<std::pair<Point3, std::uint32_t>>> at_edge;
+    struct EdgeFace {
+      std::uint64_t group;
+      std::uint32_t w;
+      std::uint32_t order;
+      Point3 n;
+      std::uint32_t third;
+    };
+    std::vector<EdgeFace> at_edge;
+    at_edge.reserve(2 * faces.size());
     for (const auto& [g, f] : faces) {
       const Point3 n = cross(sub(X(f[1]), X(f[0])), sub(X(f[2]), X(f[0])));
       const double nn = norm(n);
@@ -147,17 +173,24 @@ private:
       const Point3 u = scaled(n, 1 / nn);
       out.planes.push_back({X(f[0]), u, exact(g)});
       for (int k = 0; k < 3; ++k)
-        if (f[k] != v) at_edge[{g, f[k]}].push_back({u, f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
+        if (f[k] != v)
+          at_edge.push_back({g, f[k], static_cast<std::uint32_t>(at_edge.size()), u, f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
     }
+    std::sort(at_edge.begin(), at_edge.end(), [](const EdgeFace& a, const EdgeFace& b) {
+      return std::tie(a.group, a.w, a.order) < std::tie(b.group, b.w, b.order);
+    });
     // A crease: the two faces' third nodes off each other's plane (by more than the tolerance on a
     // fault, by more than rounding elsewhere).
-    for (const auto& [key, fs] : at_edge) {
-      const double t = exact(key.first) ? round_ : tol_;
-      if (fs.size() != 2 || std::abs(dot(fs[0].first, sub(X(fs[1].second), X(v)))) > t ||
-          std::abs(dot(fs[1].first, sub(X(fs[0].second), X(v)))) > t) {
-        const Point3 d = sub(X(key.second), X(v));
-        out.lines.push_back({scaled(d, 1 / norm(d)), exact(key.first)});
+    for (std::size_t i = 0; i < at_edge.size();) {
+      std::size_t j = i + 1;
+      while (j < at_edge.size() && at_edge[j].group == at_edge[i].group && at_edge[j].w == at_edge[i].w) ++j;
+      const double t = exact(at_edge[i].group) ? round_ : tol_;
+      if (j - i != 2 || std::abs(dot(at_edge[i].n, sub(X(at_edge[i + 1].third), X(v)))) > t ||
+          std::abs(dot(at_edge[i + 1].n, sub(X(at_edge[i].third), X(v)))) > t) {
+        const Point3 d = sub(X(at_edge[i].w), X(v));
+        out.lines.push_back({scaled(d, 1 / norm(d)), exact(at_edge[i].group)});
       }
+      i = j;
     }
     return true;
   }
