@@ -103,7 +103,9 @@ int main(int argc, char** argv) {
   app.add_option("--trace-where", o.trace_where, "OGR attribute filter on the trace file");
   app.add_option("--sections", o.sections, "Section lines (any OGR line file; attribute name, from_label, to_label)");
   app.add_option("--sections-where", o.sections_where, "OGR attribute filter on the section lines");
-  app.add_option("--faults", o.faults, "Fault results of the faulted solver (HDF5: chi per interface element)");
+  app.add_option("--faults", o.faults, "Fault results of the faulted solver (<output>_faults.h5: chi at the node pairs)");
+  app.add_option("--fault-table", o.fault_table,
+                 "Faults CSV of the faulted solver, for max chi against time (default: <faults stem>.csv beside --faults)");
   app.add_option("--fault-field", o.fault_field, "Safety-factor field in the fault results")->capture_default_str();
   app.add_option("--fault-dates", o.fault_dates, "MIN_DATE,MAX_DATE: the minimum and maximum pressure scenarios");
   app.add_option("--phase", o.phases, "NAME=START/END (repeat); default: the thesis' storage 2015, production 2015-16, "
