@@ -232,8 +232,8 @@ def plot_faults(m, fig):
                 outlines.setdefault(pool, []).append((float(ps) * 1e-3, float(pz)))
             for j, (pool, pts) in enumerate(outlines.items()):
                 a = np.array(pts)
-                ax.plot(a[:, 0], a[:, 1], ["-", "--", ":", "-."][j % 4], color="white", lw=1.0)
-                ax.plot(a[:, 0], a[:, 1], ["-", "--", ":", "-."][j % 4], color="black", lw=0.6, label=pool)
+                ax.plot(a[:, 0], a[:, 1], "-", color="white", lw=2.4)
+                ax.plot(a[:, 0], a[:, 1], ["-", "--", ":", "-."][j % 4], color="black", lw=1.2, label=pool)
             ax.legend(fontsize=7, loc="lower right")
         ax.set_xlim(s.min(), s.max())
         ax.set_ylim(z.min(), z.max())
