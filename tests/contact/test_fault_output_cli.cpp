@@ -5,7 +5,8 @@
 //    at that node (same doubles, in MPa / mm); along_strike = y - 100, down_dip = (-300 - z) sqrt(2)
 //    and x = z + 1300 (the plane's geometry);
 //  - one max chi: the statistics CSV's max_chi, the largest chi over the per-pair CSV's rows with
-//    interpolated = 0 and the largest HDF5 node value of chi agree at each date;
+//    interpolated = 0 and the largest HDF5 node value of chi agree at each date; so do max slip,
+//    max opening, max CFS change and the counts of pairs, slipping and open pairs;
 //  - --fault-pairs-csv PREFIX and 'none'; a prefix in a missing folder: exit 2, one line, no results.
 #include <cmath>
 #include <filesystem>
@@ -72,8 +73,8 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
                           "along_strike", "down_dip"})
       f[n] = h5.node_field(s, n);
     const auto coords = h5.coordinates();
-    std::size_t rows = 0, direct = 0;
-    double csv_max = -1, h5_max = -1;
+    std::size_t rows = 0, direct = 0, slipping = 0, open = 0;
+    double csv_max = -1, h5_max = -1, max_slip = 0, max_opening = 0, max_cfs = -1e300;
     for (std::size_t i = 0; i < t.rows(); ++i) {
       if (t.text(i, t.column("date")) != date) continue;
       ++rows;
@@ -100,7 +101,12 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
       EXPECT_NEAR(x, z + 1300, 1e-6);
       EXPECT_NEAR(num("along_strike_m"), y - 100, 1e-9);
       EXPECT_NEAR(num("down_dip_m"), (-300 - z) * std::sqrt(2.0), 1e-9);
-      if (num("interpolated") == 0) ++direct, csv_max = std::max(csv_max, num("chi"));
+      if (num("interpolated") == 0) {
+        ++direct, csv_max = std::max(csv_max, num("chi"));
+        max_slip = std::max(max_slip, num("slip_mm")), max_opening = std::max(max_opening, num("opening_mm"));
+        max_cfs = std::max(max_cfs, num("cfs_change_MPa"));
+        slipping += t.text(i, t.column("state")) == "slip", open += t.text(i, t.column("state")) == "open";
+      }
       ++checked;
     }
     EXPECT_EQ(rows, pairs) << date;
@@ -112,10 +118,17 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
       found = true;
       EXPECT_NEAR(stats.number(i, stats.column("max_chi")), csv_max, 5e-7) << date;
       EXPECT_EQ(static_cast<std::size_t>(stats.integer(i, stats.column("node_pairs"))), direct) << date;
+      // The other statistics from the same pairs.
+      EXPECT_NEAR(stats.number(i, stats.column("max_slip_mm")), max_slip, 5e-7) << date;
+      EXPECT_NEAR(stats.number(i, stats.column("max_opening_mm")), max_opening, 5e-7) << date;
+      EXPECT_NEAR(stats.number(i, stats.column("max_cfs_change_MPa")), max_cfs, 5e-7) << date;
+      EXPECT_EQ(static_cast<std::size_t>(stats.integer(i, stats.column("slipping"))), slipping) << date;
+      EXPECT_EQ(static_cast<std::size_t>(stats.integer(i, stats.column("open"))), open) << date;
     }
     EXPECT_TRUE(found) << date;
     EXPECT_EQ(csv_max, h5_max) << date;
-    std::printf("%s: %zu rows, %zu on free dofs, max chi %.6f\n", date.c_str(), rows, direct, csv_max);
+    std::printf("%s: %zu rows, %zu on free dofs (%zu slipping, %zu open), max chi %.6f, max slip %.6f mm, max opening %.6f mm\n",
+                date.c_str(), rows, direct, slipping, open, csv_max, max_slip, max_opening);
   }
   EXPECT_EQ(checked, t.rows());
   // The +6 MPa date: some pair at chi = 1 (slip or open).
