@@ -9,7 +9,7 @@
 //    pool pressures (work/pressure.csv);
 //  - the pools' outline on the fault plane (work/pools_on_f.csv) spans the reservoir's y and z
 //    range, shifted by the fault's along-strike origin (y = 100);
-//  - the figures exist.
+//  - the figures exist; a faults table without max_chi: exit 2, one line, nothing left.
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -135,4 +135,15 @@ TEST(ReportFaults, OneMaxChiAndThePlotData) {
 
   for (const char* png : {"chi_minimum_pressure.png", "chi_maximum_pressure.png", "chi_max_series.png"})
     EXPECT_GT(fs::file_size(d / ("rep/" + std::string(png))), 10000u) << png;
+
+  // A faults table without max_chi: exit 2, one line naming the file and the column, no report.
+  test::spit(d / "bad.csv", "date,fault\n2000-01-01,F\n");
+  r = test::run(test::tool("ugs-report") + " --results " + d / "out.h5" + " --faults " + d / "out_faults.h5" + " --fault-table " +
+                d / "bad.csv" + " -q -o " + d / "bad");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err, "ugs-report: error: " + d / "bad.csv" + ": no column 'max_chi' (columns: date, fault)\n");
+  EXPECT_FALSE(fs::exists(d / "bad"));
+  std::size_t left = 0;
+  for (const auto& e : fs::directory_iterator(d.path)) left += e.path().filename().string().find(".tmp") != std::string::npos;
+  EXPECT_EQ(left, 0u);
 }

@@ -148,6 +148,11 @@ int main(int argc, char** argv) {
     c.crs_wkt = insar::model_crs(o.crs, o.case_file);
     if (c.crs_wkt.empty()) c.notes.push_back("no model CRS (--crs or the case's crs): GeoTIFFs carry no CRS");
     if (!o.mesh.empty()) c.mesh = read_msh(o.mesh);
+    if (!o.fault_table.empty()) {
+      // Checked before the long work: the columns of the max-chi plot (build_faults reads it again).
+      const CsvTable t = CsvTable::read(o.fault_table);
+      for (const char* col : {"date", "fault", "max_chi"}) (void)t.column(col);
+    }
     c.results = std::make_unique<FieldSeriesReader>(o.results);
     if (c.results->steps().empty()) throw InputError(o.results, "has no steps");
     for (const auto& s : c.results->steps()) c.result_times.push_back(insar::step_time(s));
