@@ -219,22 +219,26 @@ void build_faults(Context& c) {
   const auto pools = per_node ? pool_nodes(c) : decltype(pool_nodes(c)){};
   // Per fault, the largest value of `field` at a step: over the fault's node pairs (interpolated =
   // 0), as ugs-solve's statistics.
-  auto node_max = [&](std::size_t step, std::vector<std::vector<double>>& values) {
+  auto node_max = [&](std::size_t step, std::vector<std::vector<double>>& values, std::vector<std::size_t>& where) {
     const Field f = fr.node_field(step, field);
     const Field in = have_interp ? fr.node_field(step, "interpolated") : Field{};
     std::vector<double> m;
     values.clear();
+    where.clear();
     for (const auto& fn : faults_n) {
       std::vector<double> v;
       double best = -INFINITY, any = -INFINITY;
-      for (auto n : fn.nodes) {
-        const double x = f.values[std::size_t(n) * f.components];
+      std::size_t ib = 0, ia = 0;
+      for (std::size_t i = 0; i < fn.nodes.size(); ++i) {
+        const std::size_t n = fn.nodes[i];
+        const double x = f.values[n * f.components];
         v.push_back(x);
         if (!std::isfinite(x)) continue;
-        any = std::max(any, x);
-        if (!have_interp || in.values[n] == 0) best = std::max(best, x);
+        if (x > any) any = x, ia = i;
+        if ((!have_interp || in.values[n] == 0) && x > best) best = x, ib = i;
       }
       m.push_back(std::isfinite(best) ? best : (std::isfinite(any) ? any : 0.0));
+      where.push_back(std::isfinite(best) ? ib : ia);
       values.push_back(std::move(v));
     }
     return m;
@@ -253,7 +257,8 @@ void build_faults(Context& c) {
     };
     if (per_node) {
       std::vector<std::vector<double>> values;
-      const auto maxima = node_max(sc.step, values);
+      std::vector<std::size_t> where;
+      const auto maxima = node_max(sc.step, values, where);
       for (std::size_t k = 0; k < faults_n.size(); ++k) {
         const auto& f = faults_n[k];
         const std::string stem = fmt::format("chi_{}_{}", sc.name, slug(f.name));
@@ -279,9 +284,10 @@ void build_faults(Context& c) {
           }
           outline = jwork(name);
         }
-        panels += fmt::format("{}{{\"name\": {}, \"nodes\": {}, \"tri\": {}, \"values\": {}, \"max\": {}, \"pools\": {}}}",
+        panels += fmt::format("{}{{\"name\": {}, \"nodes\": {}, \"tri\": {}, \"values\": {}, \"max\": {}, \"at\": [{}, {}], "
+                              "\"pools\": {}}}",
                               panels.empty() ? "" : ", ", jstr(f.name), jwork(stem + "_nodes.npy"), jwork(stem + "_tri.npy"),
-                              jwork(stem + ".npy"), maxima[k], outline);
+                              jwork(stem + ".npy"), maxima[k], f.s[where[k]], f.z[where[k]], outline);
         vmax = std::max(vmax, maxima[k]);
         headline(f.name, maxima[k]);
         if (field == "chi") shown[{f.name, steps[sc.step].date}] = maxima[k];
@@ -329,12 +335,14 @@ void build_faults(Context& c) {
   const auto cd = t.column("date"), cf = t.column("fault"), cm = t.column("max_chi");
   CsvWriter w(c.work_file("max_chi.csv"), {"fault", "date", "value"});
   std::map<std::string, std::pair<double, std::string>> peak;
+  std::vector<std::string> order;  // faults in the CSV's order
   for (std::size_t r = 0; r < t.rows(); ++r) {
     const std::string fault(t.text(r, cf)), date(t.text(r, cd));
     const double v = t.number(r, cm);
     (void)t.date(r, cd);  // an ISO date (InputError naming the row otherwise)
     w.text(fault).text(date).number(v).end_row();
     auto& p = peak[fault];
+    if (p.second.empty()) order.push_back(fault);
     if (p.second.empty() || v > p.first) p = {v, date};
     // The same definition in both files: a CSV of another run would show here.
     if (const auto it = shown.find({fault, date}); it != shown.end() && std::abs(it->second - v) > 5e-7)
@@ -343,9 +351,9 @@ void build_faults(Context& c) {
   }
   w.commit();
   if (t.rows() == 0) throw InputError(table, "has no rows");
-  for (const auto& [fault, p] : peak)
-    c.headlines.push_back({"faults, over the run", fmt::format("largest χ on {}", fault), fmt::format("{:.3f} ({})", p.first, p.second),
-                           "about 0.1 on the regional faults"});
+  for (const auto& fault : order)
+    c.headlines.push_back({"faults, over the run", fmt::format("largest χ on {}", fault),
+                           fmt::format("{:.3f} ({})", peak[fault].first, peak[fault].second), "about 0.1 on the regional faults"});
   std::string plabel;
   const bool pressures = write_pressures(c, plabel);
   Figure fig;

@@ -234,6 +234,10 @@ def plot_faults(m, fig):
                 a = np.array(pts)
                 ax.plot(a[:, 0], a[:, 1], "-", color="white", lw=2.4)
                 ax.plot(a[:, 0], a[:, 1], ["-", "--", ":", "-."][j % 4], color="black", lw=1.2, label=pool)
+        if p.get("at"):
+            # Where the maximum is: on a coarse fault mesh a single node pair, too small to see.
+            ax.plot(p["at"][0] * 1e-3, p["at"][1], "x", color="red", ms=9, mew=2.0, clip_on=False, label=f"max χ {top:.3f}")
+        if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7, loc="lower right")
         ax.set_xlim(s.min(), s.max())
         ax.set_ylim(z.min(), z.max())
