@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
 #include "ugs/formats/fields.hpp"
 
 namespace ugs::contact {
@@ -214,6 +216,12 @@ FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path
     s.pair_nodes.resize(fm.faults.size());
     for (std::size_t i = 0; i < n; ++i)
       if (S.node_pair[i] >= 0) s.pair_nodes[fm.pairs[S.node_pair[i]].fault].push_back(static_cast<std::uint32_t>(i));
+    // Two fault names that become one file name ("a b", "a_b") would overwrite each other.
+    std::map<std::string, std::string> file_of;
+    for (const auto& fp : fm.faults)
+      if (auto [it, fresh] = file_of.emplace(fault_file_name(fp.name), fp.name); !fresh)
+        throw InputError("--fault-pairs-csv", fmt::format("faults '{}' and '{}' would both write {}{}.csv (rename one)",
+                                                          it->second, fp.name, pairs_prefix, it->first));
     for (std::size_t f = 0; f < fm.faults.size(); ++f) {
       const auto& st = s.plane.strike[f];
       std::vector<std::string> c{
