@@ -253,7 +253,8 @@ void build_faults(Context& c) {
     double vmax = 0;
     auto headline = [&](const std::string& name, double v) {
       c.headlines.push_back({fmt::format("faults, {} pressure ({})", sc.name, steps[sc.step].date),
-                             fmt::format("maximum χ on {}", name), fmt::format("{:.3f}", v), "about 0.1 on the regional faults"});
+                             fmt::format("maximum {} on {}", field == "chi" ? "χ" : field, name), fmt::format("{:.3f}", v),
+                             field == "chi" ? "about 0.1 on the regional faults" : ""});
     };
     if (per_node) {
       std::vector<std::vector<double>> values;
@@ -316,7 +317,8 @@ void build_faults(Context& c) {
                                                         : "; values at the node pairs, linear in between; the pools' outline "
                                                           "projected on the fault's plane")
                                        : "; values per element (the file has no node field)");
-    fig.json = fmt::format("\"panels\": [{}], \"vmax\": {}, \"label\": \"χ\"", panels, std::max(vmax, 1e-3));
+    fig.json = fmt::format("\"panels\": [{}], \"vmax\": {}, \"label\": {}", panels, std::max(vmax, 1e-3),
+                           jstr(field == "chi" ? "χ" : field));
     c.add(fig);
   }
 
