@@ -6,11 +6,13 @@
 //    and x = z + 1300 (the plane's geometry);
 //  - one max chi: the statistics CSV's max_chi, the largest chi over the per-pair CSV's rows with
 //    interpolated = 0 and the largest HDF5 node value of chi agree at each date; so do max slip,
-//    max opening, max CFS change and the counts of pairs, slipping and open pairs;
+//    max opening, max CFS change, the slip and open areas (sums of the rows' area_m2) and the counts
+//    of pairs, slipping and open pairs; the rows' areas are the pairs' thirds of the triangles;
 //  - --fault-pairs-csv PREFIX and 'none'; a prefix in a missing folder: exit 2, one line, no results.
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -54,7 +56,7 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
   ASSERT_GT(pairs, 5u);
 
   const CsvTable t = CsvTable::read(d / "out_fault_F.csv");
-  for (const char* c : {"date", "node", "x_m", "y_m", "z_m", "along_strike_m", "down_dip_m", "state", "tau_MPa", "sigma_n_eff_MPa",
+  for (const char* c : {"date", "node", "x_m", "y_m", "z_m", "along_strike_m", "down_dip_m", "area_m2", "state", "tau_MPa", "sigma_n_eff_MPa",
                         "chi", "slip_mm", "opening_mm", "cfs_change_MPa", "p_fault_MPa", "interpolated"})
     EXPECT_NO_THROW(t.column(c)) << c;
   FieldSeriesReader h5(d / "out_faults.h5");
@@ -74,7 +76,7 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
       f[n] = h5.node_field(s, n);
     const auto coords = h5.coordinates();
     std::size_t rows = 0, direct = 0, slipping = 0, open = 0;
-    double csv_max = -1, h5_max = -1, max_slip = 0, max_opening = 0, max_cfs = -1e300;
+    double csv_max = -1, h5_max = -1, max_slip = 0, max_opening = 0, max_cfs = -1e300, slip_area = 0, open_area = 0, area = 0;
     for (std::size_t i = 0; i < t.rows(); ++i) {
       if (t.text(i, t.column("date")) != date) continue;
       ++rows;
@@ -106,10 +108,32 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
         max_slip = std::max(max_slip, num("slip_mm")), max_opening = std::max(max_opening, num("opening_mm"));
         max_cfs = std::max(max_cfs, num("cfs_change_MPa"));
         slipping += t.text(i, t.column("state")) == "slip", open += t.text(i, t.column("state")) == "open";
+        if (t.text(i, t.column("state")) == "slip") slip_area += num("area_m2");
+        if (t.text(i, t.column("state")) == "open") open_area += num("area_m2");
       }
+      area += num("area_m2");
       ++checked;
     }
     EXPECT_EQ(rows, pairs) << date;
+    // The pairs' shares: a third of each triangle per corner that is a pair (tip nodes carry none),
+    // out of the fault's 400 m along strike x 500 sqrt 2 m down dip.
+    {
+      std::set<std::uint64_t> in_csv;
+      for (std::size_t i = 0; i < t.rows(); ++i) in_csv.insert(static_cast<std::uint64_t>(t.integer(i, t.column("node"))));
+      const auto tri = h5.cells(ElementType::Triangle);
+      double expected = 0, total = 0;
+      for (std::size_t e = 0; e + 2 < tri.size(); e += 3) {
+        const Point3 &a = coords[tri[e]], &b = coords[tri[e + 1]], &c = coords[tri[e + 2]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double A = 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                                         std::pow(u[0] * v[1] - u[1] * v[0], 2));
+        total += A;
+        for (int k = 0; k < 3; ++k) expected += in_csv.count(tags[tri[e + k]]) ? A / 3 : 0.0;
+      }
+      EXPECT_NEAR(total, 400 * 500 * std::sqrt(2.0), 1e-6 * total);
+      EXPECT_NEAR(area, expected, 1e-9 * expected) << date;
+      if (s == 0) std::printf("node pairs carry %.0f of the fault's %.0f m2 (tip nodes the rest)\n", area, total);
+    }
     for (std::size_t n = 0; n < f["chi"].values.size(); ++n) h5_max = std::max(h5_max, f["chi"].values[n]);
     // One max chi: the statistics CSV (6 decimals), the per-pair CSV and the HDF5 node field.
     bool found = false;
@@ -124,6 +148,8 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
       EXPECT_NEAR(stats.number(i, stats.column("max_cfs_change_MPa")), max_cfs, 5e-7) << date;
       EXPECT_EQ(static_cast<std::size_t>(stats.integer(i, stats.column("slipping"))), slipping) << date;
       EXPECT_EQ(static_cast<std::size_t>(stats.integer(i, stats.column("open"))), open) << date;
+      EXPECT_NEAR(stats.number(i, stats.column("slip_area_m2")), slip_area, 0.05 + 1e-9 * slip_area) << date;
+      EXPECT_NEAR(stats.number(i, stats.column("open_area_m2")), open_area, 0.05 + 1e-9 * open_area) << date;
     }
     EXPECT_TRUE(found) << date;
     EXPECT_EQ(csv_max, h5_max) << date;

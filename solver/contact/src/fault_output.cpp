@@ -233,7 +233,7 @@ FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path
       if (!comments.empty()) c.push_back(comments.back());
       s.pair_csv.push_back(std::make_unique<CsvWriter>(
           pairs_prefix + fault_file_name(fm.faults[f].name) + ".csv",
-          std::vector<std::string>{"date", "node", "x_m", "y_m", "z_m", "along_strike_m", "down_dip_m", "state", "tau_MPa",
+          std::vector<std::string>{"date", "node", "x_m", "y_m", "z_m", "along_strike_m", "down_dip_m", "area_m2", "state", "tau_MPa",
                                    "sigma_n_eff_MPa", "chi", "slip_mm", "opening_mm", "cfs_change_MPa", "p_fault_MPa", "interpolated"},
           c));
     }
@@ -301,6 +301,7 @@ void FaultOutput::add(const std::string& date, double time, const FaultFields& f
         const int st = std::clamp(static_cast<int>(std::lround(state[i])), 0, 2);
         w.text(date).integer(static_cast<std::int64_t>(M.node_tags[i]));
         w.number(x[0]).number(x[1]).number(x[2]).number(s.plane.along_strike[i]).number(s.plane.down_dip[i]);
+        w.number(s.fm->pairs[s.fm->surface.node_pair[i]].area);
         w.text(kState[st]).number(tau[i] * 1e-6).number(sne[i] * 1e-6).number(chi[i]).number(slip[i] * 1e3);
         w.number(opening[i] * 1e3).number(cfs[i] * 1e-6).number(pf[i] * 1e-6).integer(interp_v[i] != 0 ? 1 : 0).end_row();
       }

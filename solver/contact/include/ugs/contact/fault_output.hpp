@@ -6,7 +6,7 @@
 //   <stem>_faults.csv        per fault and date: max chi (and where), max slip, area in slip,
 //                            area open, max opening, max Coulomb stress change
 //   <prefix><fault>.csv      per fault, one row per node pair and output date (for plotting):
-//                            position, along-strike and down-dip coordinates, state, tau,
+//                            position, along-strike and down-dip coordinates, area, state, tau,
 //                            sigma'_n, chi, slip, opening, CFS change in MPa / mm
 //
 // One definition of every statistic: chi, slip, opening... live at the node pairs (the unknowns of
