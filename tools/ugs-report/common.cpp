@@ -1,4 +1,5 @@
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -8,6 +9,25 @@
 #include "ugs/insar/displacement.hpp"
 
 namespace ugs::report {
+
+bool write_pressures(Context& c, std::string& label) {
+  if (!c.cs || c.cs->pools.empty()) return false;
+  if (std::filesystem::exists(c.work_file("pressure.csv"))) {
+    label = c.cs->pools.back().column == "p_norm" ? "p / p0 (pool pressure, normalized)" : "pool pressure (MPa)";
+    return true;
+  }
+  CsvWriter w(c.work_file("pressure.csv"), {"pool", "date", "value"});
+  std::string col;
+  for (const auto& p : c.cs->pools) {
+    const CsvTable t = CsvTable::read(p.schedule);
+    const auto cd = t.column("date"), cv = t.column(p.column);
+    col = p.column;
+    for (std::size_t r = 0; r < t.rows(); ++r) w.text(p.name).date(t.date(r, cd)).number(t.number(r, cv)).end_row();
+  }
+  w.commit();
+  label = col == "p_norm" ? "p / p0 (pool pressure, normalized)" : "pool pressure (MPa)";
+  return true;
+}
 
 std::string Phase::label() const { return fmt::format("{} {} to {}", name, format_iso_date(start), format_iso_date(end)); }
 

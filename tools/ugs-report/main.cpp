@@ -103,7 +103,9 @@ int main(int argc, char** argv) {
   app.add_option("--trace-where", o.trace_where, "OGR attribute filter on the trace file");
   app.add_option("--sections", o.sections, "Section lines (any OGR line file; attribute name, from_label, to_label)");
   app.add_option("--sections-where", o.sections_where, "OGR attribute filter on the section lines");
-  app.add_option("--faults", o.faults, "Fault results of the faulted solver (HDF5: chi per interface element)");
+  app.add_option("--faults", o.faults, "Fault results of the faulted solver (<output>_faults.h5: chi at the node pairs)");
+  app.add_option("--fault-table", o.fault_table,
+                 "Faults CSV of the faulted solver, for max chi against time (default: <faults stem>.csv beside --faults)");
   app.add_option("--fault-field", o.fault_field, "Safety-factor field in the fault results")->capture_default_str();
   app.add_option("--fault-dates", o.fault_dates, "MIN_DATE,MAX_DATE: the minimum and maximum pressure scenarios");
   app.add_option("--phase", o.phases, "NAME=START/END (repeat); default: the thesis' storage 2015, production 2015-16, "
@@ -150,6 +152,11 @@ int main(int argc, char** argv) {
     c.crs_wkt = insar::model_crs(o.crs, o.case_file);
     if (c.crs_wkt.empty()) c.notes.push_back("no model CRS (--crs or the case's crs): GeoTIFFs carry no CRS");
     if (!o.mesh.empty()) c.mesh = read_msh(o.mesh);
+    if (!o.fault_table.empty()) {
+      // Checked before the long work: the columns of the max-chi plot (build_faults reads it again).
+      const CsvTable t = CsvTable::read(o.fault_table);
+      for (const char* col : {"date", "fault", "max_chi"}) (void)t.column(col);
+    }
     c.results = std::make_unique<FieldSeriesReader>(o.results);
     if (c.results->steps().empty()) throw InputError(o.results, "has no steps");
     for (const auto& s : c.results->steps()) c.result_times.push_back(insar::step_time(s));

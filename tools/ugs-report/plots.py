@@ -9,7 +9,8 @@ re-run by hand on a report made with --keep-work.
 Kinds: map (node values on the top surface, reservoir trace, PS points), pooltop (cell values on
 the top of a pool's layer), section (polygons of a vertical section, vertical exaggeration),
 series (simulated vs measured at a PS point, pool pressures), faults (chi on each fault in its
-plane), profile (calibration misfit of every evaluation).
+plane: node values linear on triangles with the pools' outline, or values per cell), chi_series
+(max chi per fault against time, pool pressures), profile (calibration misfit of every evaluation).
 """
 import csv
 import json
@@ -207,22 +208,91 @@ def plot_faults(m, fig):
     for i, p in enumerate(panels):
         ax = f.add_subplot(rows, cols, i + 1)
         axes.append(ax)
-        sz = load(p["sz"]).reshape(-1, 3, 2).copy()
-        sz[:, :, 0] *= 1e-3
         v = load(p["values"])
-        pc = PolyCollection(list(sz), array=v, cmap="viridis", edgecolors="face", linewidths=0.1)
-        pc.set_clim(0.0, fig["vmax"])
-        ax.add_collection(pc)
-        ax.set_xlim(sz[:, :, 0].min(), sz[:, :, 0].max())
-        ax.set_ylim(sz[:, :, 1].min(), sz[:, :, 1].max())
-        finite = v[np.isfinite(v)]
-        ax.set_title(f"{p['name']}: max χ = {finite.max() if finite.size else float('nan'):.3f}", fontsize=9)
+        if "tri" in p:
+            # Node values (the node pairs'), linear on each triangle: the colours reach the maximum.
+            sz = load(p["nodes"]).reshape(-1, 2)
+            tri = Triangulation(sz[:, 0] * 1e-3, sz[:, 1], load(p["tri"]).reshape(-1, 3))
+            pc = ax.tripcolor(tri, v, shading="gouraud", cmap="viridis", vmin=0.0, vmax=fig["vmax"])
+            s, z = sz[:, 0] * 1e-3, sz[:, 1]
+            top = p["max"]
+        else:
+            sz = load(p["sz"]).reshape(-1, 3, 2).copy()
+            sz[:, :, 0] *= 1e-3
+            pc = PolyCollection(list(sz), array=v, cmap="viridis", edgecolors="face", linewidths=0.1)
+            pc.set_clim(0.0, fig["vmax"])
+            ax.add_collection(pc)
+            s, z = sz[:, :, 0], sz[:, :, 1]
+            finite = v[np.isfinite(v)]
+            top = finite.max() if finite.size else float("nan")
+        if p.get("pools"):
+            _, prow = read_csv(p["pools"])
+            outlines = {}
+            for pool, ps, pz in prow:
+                outlines.setdefault(pool, []).append((float(ps) * 1e-3, float(pz)))
+            for j, (pool, pts) in enumerate(outlines.items()):
+                a = np.array(pts)
+                ax.plot(a[:, 0], a[:, 1], "-", color="white", lw=2.4)
+                ax.plot(a[:, 0], a[:, 1], ["-", "--", ":", "-."][j % 4], color="black", lw=1.2, label=pool)
+        if p.get("at"):
+            # Where the maximum is: on a coarse fault mesh a single node pair, too small to see.
+            ax.plot(p["at"][0] * 1e-3, p["at"][1], "x", color="red", ms=9, mew=2.0, clip_on=False, label=f"max χ {top:.3f}")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, loc="lower right")
+        ax.set_xlim(s.min(), s.max())
+        ax.set_ylim(z.min(), z.max())
+        ax.set_title(f"{p['name']}: max χ = {top:.3f}", fontsize=9)
         ax.set_xlabel("along strike (km)", fontsize=8)
         ax.set_ylabel("elevation (m)", fontsize=8)
         ax.tick_params(labelsize=7)
     if pc is not None:
         cb = f.colorbar(pc, ax=axes, shrink=0.9)
         cb.set_label(fig["label"])
+    return f
+
+
+def plot_chi_series(m, fig):
+    f = new_figure(m, fig, layout="constrained")
+    ax = f.add_subplot(1, 1, 1)
+    _, rows = read_csv(fig["csv"])
+    faults = {}
+    for fault, d, val in rows:
+        faults.setdefault(fault, ([], []))
+        faults[fault][0].append(d)
+        faults[fault][1].append(float(val))
+    lo = hi = None
+    for i, (fault, (fd, fv)) in enumerate(faults.items()):
+        t = dates(fd)
+        ax.plot(t, np.array(fv), "-", color=f"C{i}", lw=1.4, marker="." if t.size < 40 else None, label=f"max χ, {fault}")
+        lo = t.min() if lo is None else min(lo, t.min())
+        hi = t.max() if hi is None else max(hi, t.max())
+    if lo == hi:
+        lo, hi = lo - np.timedelta64(1, "D"), hi + np.timedelta64(1, "D")
+    ax.set_xlim(lo, hi)
+    ax.set_ylim(0.0, 1.05)
+    ax.axhline(1.0, color="0.3", lw=0.6, ls=":")
+    ax.set_ylabel("largest χ on the fault")
+    ax.grid(True, lw=0.3, alpha=0.6)
+    locator = mdates.AutoDateLocator()
+    ax.xaxis.set_major_locator(locator)
+    ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
+    handles, labels = ax.get_legend_handles_labels()
+    if fig.get("pressure"):
+        ax2 = ax.twinx()
+        _, prow = read_csv(fig["pressure"])
+        pools = {}
+        for pool, d, val in prow:
+            pools.setdefault(pool, ([], []))
+            pools[pool][0].append(d)
+            pools[pool][1].append(float(val))
+        for i, (pool, (pd, pv)) in enumerate(pools.items()):
+            ax2.plot(dates(pd), np.array(pv), ["--", ":", "-."][i % 3], color="0.35", lw=0.9, label=f"{pool} pressure")
+        ax2.set_xlim(lo, hi)
+        ax2.set_ylabel(fig["pressure_label"])
+        h2, l2 = ax2.get_legend_handles_labels()
+        handles += h2
+        labels += l2
+    ax.legend(handles, labels, loc="upper left", fontsize=8)
     return f
 
 
@@ -296,6 +366,8 @@ def main():
             f = plot_series(m, fig)
         elif kind == "faults":
             f = plot_faults(m, fig)
+        elif kind == "chi_series":
+            f = plot_chi_series(m, fig)
         elif kind == "profile":
             f = plot_profile(m, fig)
         elif kind == "compare":

@@ -35,6 +35,7 @@ struct Options {
   std::string section_zrange;            // ZMIN/ZMAX
   std::string fault_dates;               // MIN_DATE,MAX_DATE
   std::string fault_field = "chi";
+  std::string fault_table;               // ugs-solve's faults CSV (default: <faults stem>.csv beside --faults)
   std::string calibration;               // ugs-calibrate output folder
   std::vector<std::string> compare;      // LABEL=FILE: other runs on the same mesh
   std::string compare_since;             // changes from this date (default: the first shared date)
@@ -87,6 +88,10 @@ std::string jstr(const std::string& s);
 std::string jwork(const std::string& name);
 std::string slug(const std::string& s);
 std::string mm(double v);  // "3.21"
+
+// The pool pressures of the case's schedules, long format (pool,date,value), as work/pressure.csv
+// (written once); false without a case or pools. `label`: the axis label.
+bool write_pressures(Context& c, std::string& label);
 
 // Figure builders (each adds figures, headlines and notes).
 void build_maps(Context& c);

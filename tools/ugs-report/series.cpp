@@ -17,22 +17,6 @@ namespace ugs::report {
 
 namespace {
 
-// Pool pressures, long format: pool,date,value.
-bool write_pressures(Context& c, std::string& label) {
-  if (!c.cs || c.cs->pools.empty()) return false;
-  CsvWriter w(c.work_file("pressure.csv"), {"pool", "date", "value"});
-  std::string col;
-  for (const auto& p : c.cs->pools) {
-    const CsvTable t = CsvTable::read(p.schedule);
-    const auto cd = t.column("date"), cv = t.column(p.column);
-    col = p.column;
-    for (std::size_t r = 0; r < t.rows(); ++r) w.text(p.name).date(t.date(r, cd)).number(t.number(r, cv)).end_row();
-  }
-  w.commit();
-  label = col == "p_norm" ? "p / p0 (pool pressure, normalized)" : "pool pressure (MPa)";
-  return true;
-}
-
 }  // namespace
 
 void build_series(Context& c) {

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+
+#include <fmt/format.h>
 
 #include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
 #include "ugs/formats/fields.hpp"
 
 namespace ugs::contact {
@@ -66,6 +70,57 @@ std::vector<FaultDateStats> fault_date_stats(const FaultModel& fm, const FaultFi
   return s;
 }
 
+FaultPlaneCoordinates fault_plane_coordinates(const FaultModel& fm) {
+  const FaultSurface& S = fm.surface;
+  const std::size_t nf = fm.faults.size(), nn = S.mesh.num_nodes();
+  FaultPlaneCoordinates c;
+  c.along_strike.assign(nn, 0.0);
+  c.down_dip.assign(nn, 0.0);
+  c.strike.assign(nf, {1.0, 0.0, 0.0});
+  c.dip_deg.assign(nf, 0.0);
+  std::vector<std::array<double, 3>> normal(nf, {0.0, 0.0, 0.0});
+  for (const NodePair& p : fm.pairs)
+    for (int k = 0; k < 3; ++k) normal[p.fault][k] += p.area * p.R[3 * k + 2];
+  std::vector<std::int32_t> node_fault(nn, -1);
+  for (std::size_t t = 0; t < S.triangles.size(); ++t)
+    for (auto v : S.triangles[t]) node_fault[v] = S.triangle_fault[t];
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto& n = normal[f];
+    const double nh = std::hypot(n[0], n[1]), nl = std::sqrt(nh * nh + n[2] * n[2]);
+    const bool horizontal = !(nh > 1e-3 * nl);
+    double sx = 1, sy = 0, sin_dip = 1;
+    if (!horizontal) {
+      sx = -n[1] / nh, sy = n[0] / nh;
+      if (sx < 0 || (sx == 0 && sy < 0)) sx = -sx, sy = -sy;  // eastwards (northwards)
+      sx += 0.0, sy += 0.0;                                    // no -0 in the comments
+      sin_dip = nh / nl;
+      c.dip_deg[f] = std::atan2(nh, std::abs(n[2])) * 180 / M_PI;
+    }
+    c.strike[f] = {sx, sy, 0.0};
+    double s0 = INFINITY, top = -INFINITY;
+    for (std::size_t i = 0; i < nn; ++i) {
+      if (node_fault[i] != static_cast<std::int32_t>(f)) continue;
+      const Point3& x = S.mesh.nodes[i];
+      s0 = std::min(s0, x[0] * sx + x[1] * sy);
+      top = std::max(top, horizontal ? x[1] : x[2]);
+    }
+    for (std::size_t i = 0; i < nn; ++i) {
+      if (node_fault[i] != static_cast<std::int32_t>(f)) continue;
+      const Point3& x = S.mesh.nodes[i];
+      c.along_strike[i] = x[0] * sx + x[1] * sy - s0;
+      c.down_dip[i] = horizontal ? top - x[1] : (top - x[2]) / sin_dip;
+    }
+  }
+  return c;
+}
+
+std::string fault_file_name(const std::string& name) {
+  std::string s = name;
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_' && ch != '.') ch = '_';
+  return s;
+}
+
 struct FaultOutput::Impl {
   const FaultModel* fm = nullptr;
   std::unique_ptr<FieldSeriesWriter> h5;
@@ -74,6 +129,10 @@ struct FaultOutput::Impl {
   // mean of `neighbours` (tips, pairs on prescribed boundaries).
   std::vector<std::int64_t> direct;
   std::vector<std::vector<std::uint32_t>> neighbours;
+  FaultPlaneCoordinates plane;
+  // Per-pair CSVs: one per fault, and the surface nodes of its node pairs (surface order).
+  std::vector<std::unique_ptr<CsvWriter>> pair_csv;
+  std::vector<std::vector<std::uint32_t>> pair_nodes;
 
   // Node values (k per surface node) from per-pair values.
   // Filled in passes: first from the node pairs, then from nodes filled in the pass before (a
@@ -122,7 +181,7 @@ struct FaultOutput::Impl {
 };
 
 FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path, const FaultModel& fm,
-                         const std::vector<std::string>& comments)
+                         const std::vector<std::string>& comments, const std::string& pairs_prefix)
     : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.fm = &fm;
@@ -152,6 +211,33 @@ FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path
         std::vector<std::string>{"date", "fault", "max_chi", "x_m", "y_m", "z_m", "max_slip_mm", "slip_area_m2", "open_area_m2",
                                  "max_opening_mm", "max_cfs_change_MPa", "node_pairs", "slipping", "open"},
         comments);
+  s.plane = fault_plane_coordinates(fm);
+  if (!pairs_prefix.empty()) {
+    s.pair_nodes.resize(fm.faults.size());
+    for (std::size_t i = 0; i < n; ++i)
+      if (S.node_pair[i] >= 0) s.pair_nodes[fm.pairs[S.node_pair[i]].fault].push_back(static_cast<std::uint32_t>(i));
+    // Two fault names that become one file name ("a b", "a_b") would overwrite each other.
+    std::map<std::string, std::string> file_of;
+    for (const auto& fp : fm.faults)
+      if (auto [it, fresh] = file_of.emplace(fault_file_name(fp.name), fp.name); !fresh)
+        throw InputError("--fault-pairs-csv", fmt::format("faults '{}' and '{}' would both write {}{}.csv (rename one)",
+                                                          it->second, fp.name, pairs_prefix, it->first));
+    for (std::size_t f = 0; f < fm.faults.size(); ++f) {
+      const auto& st = s.plane.strike[f];
+      std::vector<std::string> c{
+          fmt::format("ugs-solve fault {}: one row per node pair and output date; units m, MPa, mm; tension positive", fm.faults[f].name),
+          fmt::format("along_strike_m: from the fault's {} end along the strike ({:.6f}, {:.6f}, 0); down_dip_m: from its top edge, "
+                      "in its mean plane (dip {:.3f} deg)", st[0] > 1e-12 ? "west" : "south", st[0], st[1], s.plane.dip_deg[f]),
+          "state: stick, slip or open; chi = |tau| / (c - sigma'_n tan(phi)), 1 in slip or open; interpolated = 1: the pair lies on a "
+          "prescribed boundary and shows the mean of its neighbours (as the HDF5 node fields)"};
+      if (!comments.empty()) c.push_back(comments.back());
+      s.pair_csv.push_back(std::make_unique<CsvWriter>(
+          pairs_prefix + fault_file_name(fm.faults[f].name) + ".csv",
+          std::vector<std::string>{"date", "node", "x_m", "y_m", "z_m", "along_strike_m", "down_dip_m", "area_m2", "state", "tau_MPa",
+                                   "sigma_n_eff_MPa", "chi", "slip_mm", "opening_mm", "cfs_change_MPa", "p_fault_MPa", "interpolated"},
+          c));
+    }
+  }
 }
 
 FaultOutput::~FaultOutput() = default;
@@ -170,37 +256,64 @@ void FaultOutput::add(const std::string& date, double time, const FaultFields& f
       s.csv->integer(static_cast<std::int64_t>(d.open)).end_row();
     }
   }
-  if (s.h5 && write_fields) {
-    std::vector<Field> nf, cf;
-    auto add = [&](const char* name, const std::vector<double>& v, int k, bool largest = false) {
-      auto nv = s.nodes(v, k, largest);
-      cf.push_back({name, k, s.cells(nv, k, largest)});
-      nf.push_back({name, k, std::move(nv)});
+  if (!write_fields || (!s.h5 && s.pair_csv.empty())) return;
+  // Node values: the pairs' own, and the means of their neighbours at tips and prescribed pairs.
+  std::vector<Field> nf, cf;
+  auto add = [&](const char* name, const std::vector<double>& v, int k, bool largest = false) {
+    auto nv = s.nodes(v, k, largest);
+    cf.push_back({name, k, s.cells(nv, k, largest)});
+    nf.push_back({name, k, std::move(nv)});
+  };
+  add("traction", f.traction, 3);
+  add("sigma_n", f.sigma_n, 1);
+  add("sigma_n_eff", f.sigma_n_eff, 1);
+  add("tau", f.tau, 3);
+  add("tau_abs", f.tau_abs, 1);
+  add("slip", f.slip, 3);
+  add("slip_abs", f.slip_abs, 1);
+  add("opening", f.opening, 1);
+  add("u_r", f.u_r, 3);
+  add("state", f.state, 1, true);
+  add("chi", f.chi, 1);
+  add("cfs_change", f.cfs_change, 1);
+  add("p_fault", f.p_fault, 1);
+  // Where node values are the mean of their neighbours (tip nodes, pairs on prescribed boundaries).
+  std::vector<double> interp(s.direct.size());
+  for (std::size_t i = 0; i < interp.size(); ++i) interp[i] = s.direct[i] < 0 ? 1.0 : 0.0;
+  nf.push_back({"interpolated", 1, std::move(interp)});
+  nf.push_back({"along_strike", 1, s.plane.along_strike});
+  nf.push_back({"down_dip", 1, s.plane.down_dip});
+  if (!s.pair_csv.empty()) {
+    auto field = [&](const char* name) -> const std::vector<double>& {
+      for (const auto& x : nf)
+        if (x.name == name) return x.values;
+      throw std::logic_error(std::string("fault output: no node field ") + name);
     };
-    add("traction", f.traction, 3);
-    add("sigma_n", f.sigma_n, 1);
-    add("sigma_n_eff", f.sigma_n_eff, 1);
-    add("tau", f.tau, 3);
-    add("tau_abs", f.tau_abs, 1);
-    add("slip", f.slip, 3);
-    add("slip_abs", f.slip_abs, 1);
-    add("opening", f.opening, 1);
-    add("u_r", f.u_r, 3);
-    add("state", f.state, 1, true);
-    add("chi", f.chi, 1);
-    add("cfs_change", f.cfs_change, 1);
-    add("p_fault", f.p_fault, 1);
-    // Where node values are the mean of their neighbours (tip nodes, pairs on prescribed boundaries).
-    std::vector<double> interp(s.direct.size());
-    for (std::size_t i = 0; i < interp.size(); ++i) interp[i] = s.direct[i] < 0 ? 1.0 : 0.0;
-    nf.push_back({"interpolated", 1, std::move(interp)});
-    s.h5->add_step(date, time, nf, cf);
+    const auto &state = field("state"), &tau = field("tau_abs"), &sne = field("sigma_n_eff"), &chi = field("chi");
+    const auto &slip = field("slip_abs"), &opening = field("opening"), &cfs = field("cfs_change"), &pf = field("p_fault");
+    const auto& interp_v = field("interpolated");
+    static const char* kState[3] = {"stick", "slip", "open"};
+    const Mesh& M = s.fm->surface.mesh;
+    for (std::size_t k = 0; k < s.pair_csv.size(); ++k) {
+      CsvWriter& w = *s.pair_csv[k];
+      for (auto i : s.pair_nodes[k]) {
+        const Point3& x = M.nodes[i];
+        const int st = std::clamp(static_cast<int>(std::lround(state[i])), 0, 2);
+        w.text(date).integer(static_cast<std::int64_t>(M.node_tags[i]));
+        w.number(x[0]).number(x[1]).number(x[2]).number(s.plane.along_strike[i]).number(s.plane.down_dip[i]);
+        w.number(s.fm->pairs[s.fm->surface.node_pair[i]].area);
+        w.text(kState[st]).number(tau[i] * 1e-6).number(sne[i] * 1e-6).number(chi[i]).number(slip[i] * 1e3);
+        w.number(opening[i] * 1e3).number(cfs[i] * 1e-6).number(pf[i] * 1e-6).integer(interp_v[i] != 0 ? 1 : 0).end_row();
+      }
+    }
   }
+  if (s.h5) s.h5->add_step(date, time, nf, cf);
 }
 
 void FaultOutput::commit() {
   if (impl_->h5) impl_->h5->commit();
   if (impl_->csv) impl_->csv->commit();
+  for (auto& w : impl_->pair_csv) w->commit();
 }
 
 }  // namespace ugs::contact

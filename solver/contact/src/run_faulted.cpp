@@ -115,6 +115,7 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
   const std::string top_path = o.top.empty() ? stem + "_top.h5" : o.top;
   const std::string fault_path = fo.fault_output.empty() ? stem + "_faults.h5" : fo.fault_output;
   const std::string fault_csv = fo.fault_csv.empty() ? stem + "_faults.csv" : fo.fault_csv;
+  const std::string fault_pairs = fo.fault_pairs_csv.empty() ? stem + "_fault_" : fo.fault_pairs_csv;
   const std::string scenario_csv = fo.scenario_csv.empty() ? stem + "_scenario.csv" : fo.scenario_csv;
   auto t0 = Clock::now();
 
@@ -254,7 +255,7 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
                                               c);
     }
     R.faults = std::make_unique<FaultOutput>(fault_path == "none" ? "" : fault_path, fault_csv == "none" ? "" : fault_csv, R.fm,
-                                             comments);
+                                             comments, fault_pairs == "none" ? "" : fault_pairs);
   });
   sum.seconds_setup = since(t0);
 

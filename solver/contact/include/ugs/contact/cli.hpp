@@ -15,6 +15,9 @@ inline void add_fault_options(CLI::App& app, FaultedRunOptions& f) {
                 "Fault fields at the output dates (HDF5 + XDMF; default <output>_faults.h5; 'none')");
   g->add_option("--fault-csv", f.fault_csv, "Per fault and date: max chi, max slip, areas in slip and open (default "
                                             "<output>_faults.csv; 'none')");
+  g->add_option("--fault-pairs-csv", f.fault_pairs_csv,
+                "Per fault, every node pair at the output dates (position, along strike, down dip, state, tau, sigma'_n, chi, "
+                "slip, opening, CFS change): PREFIX<fault>.csv (default <output>_fault_<fault>.csv; 'none')");
   g->add_option("--fault-solver", f.fault_solver, "Saddle-point solver: auto, mumps, fieldsplit (overrides the case)")
       ->check(CLI::IsMember({"auto", "mumps", "fieldsplit"}));
   g->add_option("--scale", f.scale, "Scale of the pressure swing after the scenario's reference date (overrides the case)")

@@ -5,6 +5,17 @@
 //                            cell fields at the output dates (below)
 //   <stem>_faults.csv        per fault and date: max chi (and where), max slip, area in slip,
 //                            area open, max opening, max Coulomb stress change
+//   <prefix><fault>.csv      per fault, one row per node pair and output date (for plotting):
+//                            position, along-strike and down-dip coordinates, area, state, tau,
+//                            sigma'_n, chi, slip, opening, CFS change in MPa / mm
+//
+// One definition of every statistic: chi, slip, opening... live at the node pairs (the unknowns of
+// the contact problem are there), and "max chi of a fault" is the largest chi over the fault's node
+// pairs that act on free degrees of freedom. The statistics CSV, the node fields of the HDF5 (where
+// the nodes of tips and of pairs on prescribed boundaries, `interpolated` = 1, hold means of their
+// neighbours, never above that maximum) and ugs-report's table, maps and time plot all show that
+// number. The cell fields (means of three nodes) are for viewers that colour cells; they are
+// smaller than the pair values at peaks and are not what the statistics report.
 //
 // Fields (SI units; vectors in x, y, z; tension positive; side 1 -> side 2 normal):
 //   traction     total traction on side 1 [Pa, 3]       sigma_n, sigma_n_eff  normal, total and
@@ -16,7 +27,8 @@
 //   p_fault      fluid pressure on the fault [Pa]
 // Node fields hold the node pairs' values; tip nodes (no multiplier) and pairs on prescribed
 // boundaries take the mean of their neighbours on the fault (state: the largest), and the node
-// field `interpolated` is 1 there. Cell fields are
+// field `interpolated` is 1 there. The node fields `along_strike` and `down_dip` [m] are the
+// coordinates in the fault's own plane (fault_plane_coordinates). Cell fields are
 // the means over the triangle's nodes (state: the largest). Statistics use the node pairs that act
 // on free degrees of freedom only.
 #pragma once
@@ -47,11 +59,31 @@ struct FaultDateStats {
 };
 std::vector<FaultDateStats> fault_date_stats(const FaultModel& fm, const FaultFields& f);
 
+// Coordinates of the fault surface's nodes (FaultSurface order) in their fault's own plane [m]:
+//   along_strike  distance along the strike from the fault's end furthest west (south for a fault
+//                 striking north-south): (x - x_0) . s, s the horizontal unit vector normal to the
+//                 fault's mean normal (area-weighted over its node pairs), pointing east (north);
+//   down_dip      distance down the dip from the fault's top edge (its highest node), measured in
+//                 the mean plane: (z_top - z) / sin(dip), dip the angle of the mean plane.
+// On a planar fault these are exact distances in the plane. A (nearly) horizontal fault (dip below
+// 0.06 degrees) has no strike: along_strike is x - x_min and down_dip y_max - y.
+struct FaultPlaneCoordinates {
+  std::vector<double> along_strike, down_dip;  // per surface node
+  std::vector<std::array<double, 3>> strike;   // per fault: the unit strike vector
+  std::vector<double> dip_deg;                 // per fault: dip of the mean plane
+};
+FaultPlaneCoordinates fault_plane_coordinates(const FaultModel& fm);
+
+// A fault name as a file-name part: letters, digits, '-', '_' and '.' kept, anything else '_'.
+std::string fault_file_name(const std::string& name);
+
 class FaultOutput {
 public:
-  // Empty paths disable that output. The files appear on commit() only.
+  // Empty paths disable that output. The files appear on commit() only. `pairs_prefix`: the
+  // per-pair CSVs <pairs_prefix><fault_file_name(fault)>.csv, rows at the dates add() is given
+  // write_fields = true.
   FaultOutput(const std::string& h5_path, const std::string& csv_path, const FaultModel& fm,
-              const std::vector<std::string>& csv_comments);
+              const std::vector<std::string>& csv_comments, const std::string& pairs_prefix = "");
   ~FaultOutput();
   void add(const std::string& date, double time, const FaultFields& f, bool write_fields);
   void commit();

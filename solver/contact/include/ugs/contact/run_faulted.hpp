@@ -4,6 +4,7 @@
 // optional top CSV, docs/mechanics.md):
 //   <stem>_faults.h5/.xdmf   fault fields at the output dates (fault_output.hpp)
 //   <stem>_faults.csv        per fault and date (every step): max chi, max slip, areas in slip/open
+//   <stem>_fault_<name>.csv  per fault, every node pair at the output dates (fault_output.hpp)
 //   <stem>_scenario.csv      with --find-safe-scale: every scale tried and its outcome
 //
 // Initial fault tractions come from the geostatic stress of the case (the thesis' figures
@@ -32,6 +33,7 @@ namespace ugs::contact {
 struct FaultedRunOptions {
   std::string fault_output;            // default <stem>_faults.h5; "none" disables
   std::string fault_csv;               // default <stem>_faults.csv; "none" disables
+  std::string fault_pairs_csv;         // prefix of the per-pair CSVs, default <stem>_fault_; "none" disables
   std::string scenario_csv;            // default <stem>_scenario.csv (with find_safe_scale)
   std::string fault_solver;            // overrides the case's [solver] fault_solver
   std::optional<double> scale;         // overrides the case's [scenario] pressure_scale
