@@ -231,7 +231,7 @@ CaseFile read_case_file(const std::string& path) {
     for (std::size_t k = 0; k + 1 < c.tractions.size(); ++k)
       if (c.tractions[k].group == g)
         throw t.error("group", fmt::format("boundary '{}' is already loaded by the entry at {}", g, c.tractions[k].where));
-    // A group is held or loaded, not both (a loaded group in `free` would contradict "traction-free").
+    // A group is held or loaded, not both (`free` states that a side carries no load beyond the initial state).
     const bool explicit_fixed = root.table_opt("boundary") && root.table_opt("boundary")->has("fixed");
     for (const auto& [list, what] : {std::pair{&c.fixed_boundaries, "fixed"}, std::pair{&c.roller_boundaries, "rollers"},
                                      std::pair{&c.free_boundaries, "free"}})
