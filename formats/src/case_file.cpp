@@ -1,5 +1,6 @@
 #include "ugs/formats/case_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -32,9 +33,26 @@ double positive(const TomlTable& t, const std::string& key, double v) {
   return v;
 }
 
+// k0 / k_Hmax / k_hmin of [initial_stress] or of a material: positive and finite, k0 not with the others.
+void read_ratios(const TomlTable& t, std::optional<double>& kH, std::optional<double>& kh) {
+  for (const char* key : {"k0", "k_Hmax", "k_hmin"})
+    if (t.has(key)) positive(t, key, t.number(key));
+  // k0 is the shorthand for k_Hmax = k_hmin = k0: both forms at once would leave one unused.
+  for (const char* key : {"k_Hmax", "k_hmin"})
+    if (t.has(key) && t.has("k0"))
+      throw t.error(key, fmt::format("{} given together with k0 = {} (k0 is the shorthand for k_Hmax = k_hmin; give one "
+                                     "form)", t.number(key), t.number("k0")));
+  if (t.has("k0")) kH = kh = t.number("k0");
+  if (t.has("k_Hmax")) kH = t.number("k_Hmax");
+  if (t.has("k_hmin")) kh = t.number("k_hmin");
+}
+
 MaterialSpec parse_material(const TomlTable& t) {
+  if (t.has("Hmax_azimuth_deg"))
+    throw t.error("Hmax_azimuth_deg", "the azimuth of sigma'_Hmax is global: set it in [initial_stress] (a material may set "
+                                      "only its own k0, k_Hmax, k_hmin)");
   t.reject_unknown({"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b",
-                    "c_R", "E_MPa", "K_m_per_s", "porosity", "sigma_z_min_MPa"});
+                    "c_R", "E_MPa", "K_m_per_s", "porosity", "sigma_z_min_MPa", "k0", "k_Hmax", "k_hmin"});
   MaterialSpec m;
   m.name = t.string("name");
   m.where = t.where();
@@ -71,6 +89,7 @@ MaterialSpec parse_material(const TomlTable& t) {
     if (!(n > 0 && n < 1)) throw t.error("porosity", "must lie in (0, 1)");
     m.porosity = n;
   }
+  read_ratios(t, m.k_Hmax, m.k_hmin);
   return m;
 }
 
@@ -103,6 +122,27 @@ FaultSpec parse_fault(const TomlTable& t) {
   return f;
 }
 
+TractionSpec parse_traction(const TomlTable& t) {
+  t.reject_unknown({"group", "traction_MPa", "in_situ"});
+  TractionSpec s;
+  s.where = t.where();
+  s.group = t.string("group");
+  if (s.group.rfind("bnd:", 0) == 0) s.group = s.group.substr(4);
+  if (s.group.empty()) throw t.error("group", "is empty (expected the name of a mesh group bnd:<name>, e.g. \"east\")");
+  s.in_situ = t.boolean_or("in_situ", false);
+  if (s.in_situ && t.has("traction_MPa"))
+    throw t.error("traction_MPa", "given together with in_situ = true (give one: a constant traction or the in-situ one)");
+  if (!s.in_situ && !t.has("traction_MPa"))
+    throw InputError(s.where, fmt::format("boundary_traction on '{}' has no value (expected traction_MPa = [tx, ty, tz] or "
+                                          "in_situ = true)", s.group));
+  if (t.has("traction_MPa")) {
+    const auto v = t.numbers("traction_MPa");
+    if (v.size() != 3) throw t.error("traction_MPa", fmt::format("has {} values (expected [tx, ty, tz] in MPa)", v.size()));
+    for (int k = 0; k < 3; ++k) s.traction_Pa[k] = v[k] * kMPa;
+  }
+  return s;
+}
+
 const std::set<std::string> kBoundaryNames{"west", "east", "south", "north", "bottom", "top"};
 
 // Boundary names as in the mesh group without its prefix: "west" or "bnd:west".
@@ -125,8 +165,8 @@ const MaterialSpec* CaseFile::material(const std::string& name) const {
 
 CaseFile read_case_file(const std::string& path) {
   const TomlTable root = TomlTable::parse_file(path);
-  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "fault", "solver", "output",
-                       "scenario"});
+  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "boundary_traction", "fault",
+                       "solver", "output", "scenario"});
   CaseFile c;
   c.path = path;
   c.crs = root.string_opt("crs").value_or("");
@@ -152,13 +192,9 @@ CaseFile read_case_file(const std::string& path) {
     if (is.hydrostatic_gradient < 0 || is.hydrostatic_gradient >= is.lithostatic_gradient)
       throw s->error("hydrostatic_gradient_MPa_per_m", "must lie in [0, lithostatic gradient)");
     is.k0 = positive(*s, "k0", s->number_or("k0", 1.0));
-    // k0 is the shorthand for k_Hmax = k_hmin = k0: both forms at once would leave one unused.
-    for (const char* key : {"k_Hmax", "k_hmin"})
-      if (s->has(key) && s->has("k0"))
-        throw s->error(key, fmt::format("{} given together with k0 = {} (k0 is the shorthand for k_Hmax = k_hmin; give one "
-                                        "form)", s->number(key), is.k0));
-    if (s->has("k_Hmax")) is.k_Hmax = positive(*s, "k_Hmax", s->number("k_Hmax"));
-    if (s->has("k_hmin")) is.k_hmin = positive(*s, "k_hmin", s->number("k_hmin"));
+    // k0 is the shorthand for k_Hmax = k_hmin = k0 (kH(), kh()): the optionals stay empty with k0,
+    // and k0 with either of them is refused by read_ratios.
+    if (s->has("k_Hmax") || s->has("k_hmin")) read_ratios(*s, is.k_Hmax, is.k_hmin);
     is.Hmax_azimuth_deg = s->number_or("Hmax_azimuth_deg", 0.0);
     if (!(is.Hmax_azimuth_deg >= 0 && is.Hmax_azimuth_deg < 360))
       throw s->error("Hmax_azimuth_deg", fmt::format("{} is outside [0, 360) degrees (clockwise from north, the mesh's +y axis)",
@@ -188,6 +224,24 @@ CaseFile read_case_file(const std::string& path) {
     for (const auto& r : c.free_boundaries)
       for (const auto& f : c.roller_boundaries)
         if (r == f) throw b->error("free", fmt::format("boundary '{}' is also in rollers", r));
+  }
+  for (const auto& t : root.tables("boundary_traction")) {
+    c.tractions.push_back(parse_traction(t));
+    const std::string& g = c.tractions.back().group;
+    for (std::size_t k = 0; k + 1 < c.tractions.size(); ++k)
+      if (c.tractions[k].group == g)
+        throw t.error("group", fmt::format("boundary '{}' is already loaded by the entry at {}", g, c.tractions[k].where));
+    // A group is held or loaded, not both (`free` states that a side carries no load beyond the initial state).
+    const bool explicit_fixed = root.table_opt("boundary") && root.table_opt("boundary")->has("fixed");
+    for (const auto& [list, what] : {std::pair{&c.fixed_boundaries, "fixed"}, std::pair{&c.roller_boundaries, "rollers"},
+                                     std::pair{&c.free_boundaries, "free"}})
+      if (std::find(list->begin(), list->end(), g) != list->end())
+        throw t.error("group", fmt::format("boundary '{}' is also in [boundary] {}{} (a group is either held or loaded: "
+                                           "take it out of {})", g, what,
+                                           std::string(what) == "fixed" && !explicit_fixed
+                                               ? " (the default: fixed = [\"west\", \"east\", \"south\", \"north\", \"bottom\"])"
+                                               : "",
+                                           what));
   }
   for (const auto& t : root.tables("fault")) c.faults.push_back(parse_fault(t));
   if (auto s = root.table_opt("solver")) {

@@ -139,3 +139,85 @@ TEST(CaseFile, InsituStressBadInput) {
               "c.toml:2: 'initial_stress.Hmax_azimuth_deg': " + v +
                   " is outside [0, 360) degrees (clockwise from north, the mesh's +y axis)");
 }
+
+// Issue 21: per-material stress ratios. A material's k0 sets both of its ratios, k_Hmax / k_hmin
+// each one (the other stays the [initial_stress] one, resolved by ugs-solve); the azimuth is global.
+TEST(CaseFile, PerMaterialStressRatios) {
+  const CaseFile c = parse(
+      "[initial_stress]\nk_Hmax = 1.3\nk_hmin = 0.9\n"
+      "[[material]]\nname = \"a\"\n"
+      "[[material]]\nname = \"b\"\nk0 = 0.6\n"
+      "[[material]]\nname = \"c\"\nk_hmin = 0.7\n");
+  EXPECT_FALSE(c.material("a")->own_stress_ratios());
+  EXPECT_EQ(*c.material("b")->k_Hmax, 0.6);
+  EXPECT_EQ(*c.material("b")->k_hmin, 0.6);
+  EXPECT_FALSE(c.material("c")->k_Hmax.has_value());
+  EXPECT_EQ(*c.material("c")->k_hmin, 0.7);
+}
+
+TEST(CaseFile, PerMaterialStressRatiosBadInput) {
+  auto tail = [](const std::string& e) { return e.substr(e.find("c.toml:")); };
+  const std::string m = "[[material]]\nname = \"a\"\n";
+  EXPECT_EQ(tail(error_of(m + "k0 = 0\n")), "c.toml:3: 'material[0].k0': must be positive, got 0");
+  EXPECT_EQ(tail(error_of(m + "k_Hmax = -0.5\n")), "c.toml:3: 'material[0].k_Hmax': must be positive, got -0.5");
+  EXPECT_EQ(tail(error_of(m + "k_hmin = inf\n")), "c.toml:3: material[0].k_hmin = inf is not a finite number");
+  EXPECT_EQ(tail(error_of(m + "k0 = 0.8\nk_hmin = 0.9\n")),
+            "c.toml:4: 'material[0].k_hmin': 0.9 given together with k0 = 0.8 (k0 is the shorthand for k_Hmax = k_hmin; "
+            "give one form)");
+  EXPECT_EQ(tail(error_of(m + "Hmax_azimuth_deg = 30\n")),
+            "c.toml:3: 'material[0].Hmax_azimuth_deg': the azimuth of sigma'_Hmax is global: set it in [initial_stress] (a "
+            "material may set only its own k0, k_Hmax, k_hmin)");
+}
+
+// Issue 21: [[boundary_traction]] on a named boundary group: a constant total traction (MPa, SI
+// on reading) or the in-situ one; a group both held and loaded, twice loaded, or an entry without
+// a value is refused with its line.
+TEST(CaseFile, BoundaryTractions) {
+  const CaseFile c = parse(
+      "[boundary]\nfixed = [\"bottom\"]\nrollers = [\"west\", \"south\"]\n"
+      "[[boundary_traction]]\ngroup = \"east\"\ntraction_MPa = [-12.5, 0, 1]\n"
+      "[[boundary_traction]]\ngroup = \"bnd:north\"\nin_situ = true\n");
+  ASSERT_EQ(c.tractions.size(), 2u);
+  EXPECT_EQ(c.tractions[0].group, "east");
+  EXPECT_FALSE(c.tractions[0].in_situ);
+  EXPECT_EQ(c.tractions[0].traction_Pa[0], -12.5e6);
+  EXPECT_EQ(c.tractions[0].traction_Pa[2], 1e6);
+  EXPECT_EQ(c.tractions[0].where, c.path + ":4");  // the entry's [[boundary_traction]] line
+  EXPECT_EQ(c.tractions[1].group, "north");  // the bnd: prefix may be written
+  EXPECT_TRUE(c.tractions[1].in_situ);
+}
+
+TEST(CaseFile, BoundaryTractionBadInput) {
+  auto tail = [](const std::string& e) { return e.substr(e.find("c.toml:")); };
+  const std::string b = "[boundary]\nfixed = [\"bottom\"]\nrollers = [\"west\"]\nfree = [\"top\"]\n[[boundary_traction]]\n";
+  EXPECT_EQ(tail(error_of(b + "group = \"east\"\n")),
+            "c.toml:5: boundary_traction on 'east' has no value (expected traction_MPa = [tx, ty, tz] or in_situ = true)");
+  EXPECT_EQ(tail(error_of(b + "group = \"east\"\nin_situ = false\n")),
+            "c.toml:5: boundary_traction on 'east' has no value (expected traction_MPa = [tx, ty, tz] or in_situ = true)");
+  EXPECT_EQ(tail(error_of(b + "group = \"east\"\nin_situ = true\ntraction_MPa = [1, 2, 3]\n")),
+            "c.toml:8: 'boundary_traction[0].traction_MPa': given together with in_situ = true (give one: a constant "
+            "traction or the in-situ one)");
+  EXPECT_EQ(tail(error_of(b + "group = \"east\"\ntraction_MPa = [1, 2]\n")),
+            "c.toml:7: 'boundary_traction[0].traction_MPa': has 2 values (expected [tx, ty, tz] in MPa)");
+  EXPECT_EQ(tail(error_of(b + "group = \"east\"\ntraction_MPa = [1, nan, 2]\n")),
+            "c.toml:7: boundary_traction[0].traction_MPa[1] = nan is not a finite number");
+  EXPECT_EQ(tail(error_of(b + "group = \"\"\nin_situ = true\n")),
+            "c.toml:6: 'boundary_traction[0].group': is empty (expected the name of a mesh group bnd:<name>, e.g. \"east\")");
+  EXPECT_EQ(tail(error_of(b + "group = \"bottom\"\nin_situ = true\n")),
+            "c.toml:6: 'boundary_traction[0].group': boundary 'bottom' is also in [boundary] fixed (a group is either held "
+            "or loaded: take it out of fixed)");
+  EXPECT_EQ(tail(error_of(b + "group = \"west\"\ntraction_MPa = [0, 0, 0]\n")),
+            "c.toml:6: 'boundary_traction[0].group': boundary 'west' is also in [boundary] rollers (a group is either held "
+            "or loaded: take it out of rollers)");
+  EXPECT_EQ(tail(error_of(b + "group = \"top\"\ntraction_MPa = [0, 0, -1]\n")),
+            "c.toml:6: 'boundary_traction[0].group': boundary 'top' is also in [boundary] free (a group is either held "
+            "or loaded: take it out of free)");
+  const std::string twice = tail(error_of(b + "group = \"east\"\nin_situ = true\n[[boundary_traction]]\ngroup = \"east\"\nin_situ = true\n"));
+  EXPECT_EQ(twice.substr(0, twice.find(" at ")), "c.toml:9: 'boundary_traction[1].group': boundary 'east' is already loaded by the entry");
+  EXPECT_EQ(twice.substr(twice.size() - 9), "/c.toml:5") << twice;
+  // Without [boundary] fixed the default holds the four sides and the bottom: loading one is refused.
+  EXPECT_EQ(tail(error_of("[[boundary_traction]]\ngroup = \"east\"\nin_situ = true\n")),
+            "c.toml:2: 'boundary_traction[0].group': boundary 'east' is also in [boundary] fixed (the default: fixed = "
+            "[\"west\", \"east\", \"south\", \"north\", \"bottom\"]) (a group is either held or loaded: take it out of fixed)");
+  EXPECT_NE(error_of(b + "group = \"east\"\ntraction = [1, 2, 3]\n").find("unknown key"), std::string::npos);
+}

@@ -193,3 +193,26 @@ INSTANTIATE_TEST_SUITE_P(Planes, FaultTractions,
                                            FaultCase{"dip60_strike_E", 60, 0, 1, -1, 30},
                                            FaultCase{"dip60_strike_N_Hmax135", 60, 1, 0, -1, 135}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+// Per-material ratios beside a fault: the initial fault tractions (geostatic_fault_state) take the
+// [initial_stress] tensor, so a material with other ratios touching a fault is refused (exit 2, the
+// material's line); own ratios equal to the global ones pass.
+TEST(InsituTensor, OwnRatiosBesideAFaultAreRefused) {
+  const FaultCase f{"dip60_strike_N", 60, 1, 0, -1, 30};
+  const Mesh mesh = faulted_box(f);
+  CaseFile cs = faulted_case();
+  cs.materials[0].k_Hmax = 1.1;  // k_hmin stays the global 0.9
+  try {
+    mech::build_model(mesh, cs, true);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "insitu.toml:1: material 'rock' sets its own stress ratios (k_Hmax 1.1, k_hmin 0.9; [initial_stress]: 1.3, 0.9) "
+              "and lies beside fault:F: the initial fault tractions take the [initial_stress] ratios only (expected no own "
+              "ratios on a faulted mesh's materials beside a fault)");
+  }
+  cs.materials[0].k_Hmax = 1.3;  // the same as the global ratio: nothing to refuse
+  const mech::Model model = mech::build_model(mesh, cs, true);
+  EXPECT_EQ(model.material_k[0][0], 1.3);
+  EXPECT_EQ(model.material_k[0][1], 0.9);
+}

@@ -324,6 +324,50 @@ TEST(SolveTool, SameResultOnOneAndTwoProcesses) {
   }
 }
 
+// Issue 21: per-material ratios and boundary tractions reach every rank (distributed with the model):
+// the small case with its rock at k_Hmax 1.2 / k_hmin 0.6, rollers on west, south and bottom, the
+// in-situ load on east and north and 1 MPa pressing the top gives the same u and stress on 1 and 2
+// processes; the top load settles the model (u differs from the unloaded run) and the rock's output
+// stress at the first output date (two monthly steps, --until 1959-12-01) keeps sigma'_xx / sigma'_yy near k_hmin / k_Hmax = 0.5.
+TEST(SolveTool, RatiosAndTractionsOnOneAndTwoProcesses) {
+  Dir d("solve-traction");
+  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string() + " --refine 0.5").exit_code, 0);
+  const std::string args = d / "mesh.msh" + " --pressure " + d / "flow_pool_a.h5" + " --pressure " + d / "flow_pool_c.h5" +
+                           " --until 1959-12-01";
+  std::string text = test::slurp(d / "case.toml");
+  text.replace(text.find("dates = ["), 36, "dates = [\"1959-11-01\", \"1959-12-01\"]");
+  text.replace(text.find("nu = 0.3\n"), 9, "nu = 0.3\nk_Hmax = 1.2\nk_hmin = 0.6\n");
+  const std::string bc = "[boundary]\nfixed = []\nrollers = [\"west\", \"south\", \"bottom\"]\n\n"
+                         "[[boundary_traction]]\ngroup = \"east\"\nin_situ = true\n\n"
+                         "[[boundary_traction]]\ngroup = \"north\"\nin_situ = true\n\n";
+  test::spit(d / "unloaded.toml", text.substr(0, text.find("[output]")) + bc + text.substr(text.find("[output]")));
+  test::spit(d / "loaded.toml", text.substr(0, text.find("[output]")) + bc +
+                                    "[[boundary_traction]]\ngroup = \"top\"\ntraction_MPa = [0, 0, -1]\n\n" +
+                                    text.substr(text.find("[output]")));
+  for (const std::string tag : {"unloaded", "loaded"}) {
+    const std::string opts = " --case " + d / (tag + ".toml") + " --solver mumps";
+    auto r1 = test::run(test::solve_cmd() + " " + args + opts + " -o " + d / (tag + "1.h5"));
+    ASSERT_EQ(r1.exit_code, 0) << r1.err;
+    auto r2 = test::run(test::solve_cmd(2) + " " + args + opts + " -o " + d / (tag + "2.h5"));
+    ASSERT_EQ(r2.exit_code, 0) << r2.err;
+    const auto u1 = test::last_field(d / (tag + "1.h5"), "u", false), u2 = test::last_field(d / (tag + "2.h5"), "u", false);
+    const auto s1 = test::last_field(d / (tag + "1.h5"), "stress", true), s2 = test::last_field(d / (tag + "2.h5"), "stress", true);
+    EXPECT_LT(test::max_rel_diff(u1, u2), 1e-10) << tag;
+    EXPECT_LT(test::max_rel_diff(s1, s2), 1e-10) << tag;
+  }
+  const auto u0 = test::last_field(d / "unloaded1.h5", "u", false), u1 = test::last_field(d / "loaded1.h5", "u", false);
+  double settle = 0;  // the top load's extra settlement: 1 MPa over ~2.5 km of rock, centimetres
+  for (std::size_t i = 2; i < u0.size(); i += 3) settle = std::max(settle, u0[i] - u1[i]);
+  std::printf("1 MPa on the top: up to %.4f m more settlement\n", settle);
+  EXPECT_GT(settle, 1e-3);
+  FieldSeriesReader r(d / "unloaded1.h5");
+  const auto s = r.cell_field(0, "stress").values;
+  std::size_t rock_like = 0;
+  for (std::size_t c = 0; 6 * c + 5 < s.size(); ++c)
+    if (s[6 * c + 1] < -1e6 && std::abs(s[6 * c] / s[6 * c + 1] - 0.5) < 0.02) ++rock_like;
+  EXPECT_GT(rock_like, s.size() / 6 / 2) << "most elements are rock with sigma'_xx / sigma'_yy = 0.6 / 1.2";
+}
+
 // Determinism: the same input on the same number of processes gives the same numbers, bit for bit
 // (the partition is Scotch's with a fixed seed: through PETSc's PT-Scotch path it changed from run
 // to run, and the displacements with it, by ~1e-9 m on a 52,000-node box).
@@ -472,6 +516,26 @@ INSTANTIATE_TEST_SUITE_P(
                               "unknown boundary 'upper'"},
                       BadCase{"boundary_twice", "free = [\"top\"]", "free = [\"bottom\"]", "boundary 'bottom' is also in fixed"},
                       BadCase{"unknown_material", "name = \"rock\"", "name = \"granite\"", "mesh material 'rock'"},
+                      // Issue 21: stress ratios, azimuth, boundary tractions.
+                      BadCase{"k0_zero", "hydrostatic_gradient_MPa_per_m = 0.0100\n", "hydrostatic_gradient_MPa_per_m = 0.0100\nk0 = 0\n",
+                              "bad.toml:5: 'initial_stress.k0': must be positive, got 0"},
+                      BadCase{"k_hmin_negative", "hydrostatic_gradient_MPa_per_m = 0.0100\n",
+                              "hydrostatic_gradient_MPa_per_m = 0.0100\nk_hmin = -0.7\n",
+                              "bad.toml:5: 'initial_stress.k_hmin': must be positive, got -0.7"},
+                      BadCase{"azimuth_360", "hydrostatic_gradient_MPa_per_m = 0.0100\n",
+                              "hydrostatic_gradient_MPa_per_m = 0.0100\nHmax_azimuth_deg = 360\n",
+                              "bad.toml:5: 'initial_stress.Hmax_azimuth_deg': 360 is outside [0, 360) degrees"},
+                      BadCase{"material_k_Hmax_zero", "c_R = 3.0\n", "c_R = 3.0\nk_Hmax = 0\n",
+                              "'material[0].k_Hmax': must be positive, got 0"},
+                      BadCase{"material_k0_inf", "c_R = 3.0\n", "c_R = 3.0\nk0 = inf\n", "material[0].k0 = inf is not a finite number"},
+                      BadCase{"traction_group_not_in_mesh", "[solver]", "[[boundary_traction]]\ngroup = \"flank\"\ntraction_MPa = [1, 0, 0]\n\n[solver]",
+                              "bad.toml:19: boundary_traction: the mesh has no group bnd:flank (expected one of its boundary groups: "
+                              "west, east, south, north, bottom, top)"},
+                      BadCase{"traction_without_value", "[solver]", "[[boundary_traction]]\ngroup = \"flank\"\n\n[solver]",
+                              "bad.toml:19: boundary_traction on 'flank' has no value (expected traction_MPa = [tx, ty, tz] or "
+                              "in_situ = true)"},
+                      BadCase{"traction_on_rollers", "[solver]", "[[boundary_traction]]\ngroup = \"east\"\nin_situ = true\n\n[solver]",
+                              "boundary 'east' is also in [boundary] rollers (a group is either held or loaded: take it out of rollers)"},
                       BadCase{"unknown_key", "c_R = 3.0", "c_R = 3.0\ncr = 2", "cr': unknown key"},
                       BadCase{"bad_rule", "inversion_rule = \"sigma-max\"", "inversion_rule = \"max\"", "inversion_rule"},
                       BadCase{"bad_steps", "inversion_rule = \"sigma-max\"", "inversion_rule = \"sigma-max\"\nsteps = \"some\"",

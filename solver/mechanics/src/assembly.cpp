@@ -4,7 +4,9 @@
 namespace ugs::mech {
 
 void MechanicsSolver::Impl::external_force(const std::vector<double>& dp) {
-  std::fill(fext.begin(), fext.end(), 0.0);
+  // The constant boundary-traction load (boundary_traction.cpp; zero without [[boundary_traction]]).
+  for (int a = 0; a < lm.n_owned; ++a)
+    for (int k = 0; k < 3; ++k) fext[3 * a + k] = lm.traction[a][k];
   for (std::size_t c = 0; c < lm.n_cells(); ++c) {
     const double dpe = lm.materials[lm.cell_material[c]].biot * dp[c];
     if (dpe == 0) continue;

@@ -181,13 +181,14 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
       std::vector<std::uint32_t> orig(gl.size());
       std::vector<Point3> x(gl.size());
       std::vector<std::uint8_t> fixed(gl.size());
-      std::vector<std::array<double, 3>> pres(gl.size());
+      std::vector<std::array<double, 3>> pres(gl.size()), trac(gl.size());
       for (std::size_t k = 0; k < gl.size(); ++k) {
         const std::uint32_t v = lm.orig_of_global[gl[k]];
         orig[k] = v;
         x[k] = m.x[v];
         fixed[k] = m.fixed[v];
         pres[k] = m.prescribed[v];
+        trac[k] = m.traction_force.empty() ? std::array<double, 3>{0, 0, 0} : m.traction_force[v];
       }
       std::vector<std::array<std::int32_t, 4>> cells(cells_of[p].size());
       std::vector<std::int32_t> mat(cells.size());
@@ -214,6 +215,7 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
       buf.put(x);
       buf.put(fixed);
       buf.put(pres);
+      buf.put(trac);
       buf.put(cells);
       buf.put(mat);
       buf.put(cells_of[p]);
@@ -221,6 +223,10 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
       buf.put_value<std::uint64_t>(m.materials.size());
       for (const auto& mt : m.materials) put_material(buf, mt);
       buf.put_value(m.initial);
+      // (a Model made without build_model may lack the per-material ratios: the global ones then)
+      buf.put(m.material_k.size() == m.materials.size()
+                  ? m.material_k
+                  : std::vector<std::array<double, 2>>(m.materials.size(), {m.initial.k_Hmax, m.initial.k_hmin}));
       cells_of[p] = {};
     }
   }
@@ -241,6 +247,7 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
   lm.x = in.get<Point3>();
   lm.fixed = in.get<std::uint8_t>();
   lm.prescribed = in.get<std::array<double, 3>>();
+  lm.traction = in.get<std::array<double, 3>>();
   lm.cells = in.get<std::array<std::int32_t, 4>>();
   lm.cell_material = in.get<std::int32_t>();
   lm.cell_index = in.get<std::uint32_t>();
@@ -248,6 +255,7 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
   const auto nm = in.get_value<std::uint64_t>();
   for (std::uint64_t k = 0; k < nm; ++k) lm.materials.push_back(get_material(in));
   lm.initial = in.get_value<InitialState>();
+  lm.material_k = in.get<std::array<double, 2>>();
   return lm;
 }
 

@@ -24,12 +24,14 @@ struct LocalMesh {
   std::vector<Point3> x;
   std::vector<std::uint8_t> fixed;             // bit c: component c prescribed
   std::vector<std::array<double, 3>> prescribed;
+  std::vector<std::array<double, 3>> traction;     // Model::traction_force per local node
   std::vector<std::array<std::int32_t, 4>> cells;  // local node ids
   std::vector<std::int32_t> cell_material;
   std::vector<std::uint32_t> cell_index;       // output index (position among the model's tets)
   std::vector<std::uint8_t> cell_owned;        // this rank reports the cell
   std::vector<fem::Material> materials;
   InitialState initial;
+  std::vector<std::array<double, 2>> material_k;   // Model::material_k
 
   // Rank 0 only.
   std::vector<std::uint32_t> orig_of_global;               // mesh node index of each global node

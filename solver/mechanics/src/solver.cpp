@@ -102,7 +102,7 @@ CellResults MechanicsSolver::gather_cells() {
     const Vec6 ds = h < 0 ? s.elastic_stress(c, eps) : s.committed[h].dsig;
     const auto& t = lm.cells[c];
     const double zc = 0.25 * (lm.x[t[0]][2] + lm.x[t[1]][2] + lm.x[t[2]][2] + lm.x[t[3]][2]);
-    const Vec6 s0 = lm.initial.effective_stress(zc, m.biot);
+    const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]]);
     Vec6 tot;
     for (int k = 0; k < 6; ++k) tot[k] = s0[k] + ds[k];
     for (double v : fem::strain_to_output(eps)) strain.push_back(v);

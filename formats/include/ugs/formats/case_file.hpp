@@ -34,6 +34,11 @@ struct MaterialSpec {
   // Flow: hydraulic conductivity [m/s] along x, y, z and porosity; absent for non-flow units.
   std::optional<std::array<double, 3>> K;
   std::optional<double> porosity;
+  // Own in-situ stress ratios (docs/case-file.md): sigma'_Hmax / sigma'_v and sigma'_hmin / sigma'_v of
+  // this material's elements; a ratio not given is the [initial_stress] one (k0 sets both). The
+  // azimuth and sigma'_v(z) stay global.
+  std::optional<double> k_Hmax, k_hmin;
+  bool own_stress_ratios() const { return k_Hmax || k_hmin; }
 };
 
 struct PoolSpec {
@@ -59,6 +64,15 @@ struct InitialStressSpec {
   double kh() const { return k_hmin.value_or(k0); }
 };
 
+// [[boundary_traction]]: the total traction (sigma n, n the outward normal, tension positive) on the
+// triangles of the mesh group bnd:<group>, constant in time (docs/case-file.md).
+struct TractionSpec {
+  std::string group;                      // without the bnd: prefix
+  std::string where;                      // file:line of the entry
+  bool in_situ = false;                   // t = sigma_0(x) n, the initial total stress on the face
+  std::array<double, 3> traction_Pa{};    // else this constant traction, Pa, mesh axes
+};
+
 struct FaultSpec {
   std::string name;
   std::string where;
@@ -78,6 +92,7 @@ struct CaseFile {
   std::vector<std::string> fixed_boundaries{"west", "east", "south", "north", "bottom"};
   std::vector<std::string> roller_boundaries;  // zero normal displacement only
   std::vector<std::string> free_boundaries;    // traction-free (stated for clarity; the default)
+  std::vector<TractionSpec> tractions;         // [[boundary_traction]], on groups in none of the lists above
   std::vector<FaultSpec> faults;
   // Solver settings (docs/case-file.md).
   double newton_tolerance = 1e-8;

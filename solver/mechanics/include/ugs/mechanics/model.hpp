@@ -28,6 +28,9 @@ struct InitialState {
 
   // Initial effective stress (thesis Voigt order, Pa, tension positive) at elevation z.
   fem::Vec6 effective_stress(double z, double biot) const;
+  // The same with a material's own ratios k = {k_Hmax, k_hmin} (Model::material_k); sigma'_v(z) and
+  // the azimuth are the global ones: sigma'_v depends on the gradients and the Biot coefficient only.
+  fem::Vec6 effective_stress(double z, double biot, const std::array<double, 2>& k) const;
   double pore_pressure(double z) const;
 };
 
@@ -43,6 +46,12 @@ struct Model {
   std::vector<std::uint8_t> fixed;
   std::vector<std::array<double, 3>> prescribed;
   InitialState initial;
+  // Per material: {k_Hmax, k_hmin} of its elements' initial stress ([[material]] k0 / k_Hmax / k_hmin,
+  // else the [initial_stress] ones).
+  std::vector<std::array<double, 2>> material_k;
+  // Per mesh node: the consistent nodal force [N] of the [[boundary_traction]] entries, the change of
+  // the boundary traction from the initial state's sigma_0 n (boundary_traction.cpp); a constant load.
+  std::vector<std::array<double, 3>> traction_force;
   std::vector<std::uint32_t> top_nodes;            // nodes of bnd:top (sorted), for the surface table
   std::vector<std::array<std::uint32_t, 3>> top_triangles;
 
@@ -57,6 +66,15 @@ Model build_model(const Mesh& mesh, const CaseFile& cs);
 // The same, keeping a faulted mesh's interface elements out of the model (the fault contact,
 // ugs_contact, takes them) when `allow_interface_elements` is set.
 Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_elements);
+
+// The nodal forces of the case's [[boundary_traction]] entries on `model` (its tets, materials,
+// material_k and initial state set): for each triangle of bnd:<group>, outward normal n (away from
+// the tetrahedron it bounds), the traction change dt(x) = t - sigma_0(x) n with sigma_0 the initial
+// total stress of that tetrahedron's material (sigma'_0 - alpha p0 I), integrated exactly for
+// dt linear over the triangle: f_i = A/12 (2 dt_i + dt_j + dt_k). `in_situ` entries add nothing.
+// InputError: a group the mesh lacks (naming the bnd: groups it has), a triangle that bounds no
+// tetrahedron.
+std::vector<std::array<double, 3>> boundary_traction_forces(const Mesh& mesh, const CaseFile& cs, const Model& model);
 
 // fem::Material from a case [[material]] (InputError at its line when invalid).
 fem::Material material_from_spec(const MaterialSpec& spec, const CaseFile& cs);
