@@ -196,3 +196,35 @@ TEST(LockedHistorySibling, ContinuousAnswerDoesNotDependOnTheLinearSolver) {
   }
   std::printf("worst %.2e; linear iterations %d (mumps) / %d (cg-hypre)\n", worst, linear_a, linear_b);
 }
+
+// A step that fails after committing sub-steps leaves the history as it was before it
+// (MechanicsSolver::advance), the loading direction of the last pressure change included: it
+// decides the first branch of the next step (newton.cpp), and the safe-scale search and the
+// sub-stepping go on from such states. The recharge -6 -> -2 MPa with at most 5 Newton iterations
+// per sub-step commits 8 sub-steps of 1/16, then fails.
+TEST(LockedHistorySibling, FailedStepLeavesTheHypoplasticMemoryAsItWas) {
+  const Mesh plain = test::dipping_fault_box(100);
+  const CaseFile cs = hypo_case();
+  const mech::Model m0 = mech::build_model(plain, cs);
+  mech::SolverOptions a;
+  a.linear = mech::LinearSolver::Mumps;
+  mech::MechanicsSolver sa(MPI_COMM_WORLD, &m0, a);
+  ASSERT_TRUE(sa.advance(block_dp(m0, -6e6), "depletion").converged);
+  const mech::SavedState before = sa.gather_state();
+  mech::SolverOptions b = a;
+  b.max_newton = 5;
+  b.max_substeps = 16;
+  mech::MechanicsSolver sb(MPI_COMM_WORLD, &m0, b);
+  sb.restore_state(before);
+  const auto r = sb.advance(block_dp(m0, -2e6), "recharge");
+  ASSERT_FALSE(r.converged);
+  ASSERT_GE(r.substeps, 1) << "the step must fail after committing sub-steps";
+  const mech::SavedState after = sb.gather_state();
+  EXPECT_EQ(after.u, before.u);
+  EXPECT_EQ(after.eps, before.eps);
+  EXPECT_EQ(after.dsig, before.dsig);
+  EXPECT_EQ(after.dp, before.dp);
+  int differ = 0;  // sigma_max, sigma_inv, direction, sign of the last pressure change
+  for (std::size_t i = 0; i < before.hypo.size(); ++i) differ += after.hypo[i] != before.hypo[i];
+  EXPECT_EQ(differ, 0) << "of " << before.hypo.size() << " hypo-plastic history values";
+}

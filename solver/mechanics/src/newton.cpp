@@ -235,6 +235,7 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
   const auto committed_start = committed;
   const auto phase_start = committed_phase;
   const auto c_start = committed_c;
+  const auto last_ddp_start = last_ddp;  // the direction of the next step's first tangent
   UGS_PETSC(VecCopy(u, u_step));
   if (coupling) coupling->begin_step();
   double done = 0, h = 1;
@@ -262,6 +263,7 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
       committed = committed_start;
       committed_phase = phase_start;
       committed_c = c_start;
+      last_ddp = last_ddp_start;
       dp_cell = start;
       UGS_PETSC(VecCopy(u_step, u));
       UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
