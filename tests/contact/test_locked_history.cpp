@@ -228,3 +228,44 @@ TEST(LockedHistorySibling, FailedStepLeavesTheHypoplasticMemoryAsItWas) {
   for (std::size_t i = 0; i < before.hypo.size(); ++i) differ += after.hypo[i] != before.hypo[i];
   EXPECT_EQ(differ, 0) << "of " << before.hypo.size() << " hypo-plastic history values";
 }
+
+// The safe-scale search of ugs-solve reruns the steps after the reference date from a saved
+// state (MechanicsSolver::gather_state / restore_state, FaultContact::save / restore): rerun at
+// scale 1 from the state after step 3 (the first minimum), the recharge and the re-depletion past
+// it give the base run's displacement again.
+TEST(LockedHistorySibling, RerunFromASavedStateRepeatsTheHistory) {
+  const Mesh plain = test::dipping_fault_box(100);
+  Mesh faulted = plain;
+  test::insert_all_faults(faulted);
+  const CaseFile cs = hypo_case();
+  mech::SolverOptions opt;
+  opt.linear = mech::LinearSolver::Mumps;
+  opt.tolerance = 1e-10;
+  const mech::Model m1 = mech::build_model(faulted, cs, true);
+  const contact::FaultModel fm = contact::build_fault_model(faulted, cs, m1, contact::geostatic_fault_state(m1.initial));
+  contact::ContactOptions copt;
+  copt.solver = contact::SaddleSolver::Mumps;
+  contact::FaultContact fc(MPI_COMM_WORLD, &fm, copt);
+  mech::MechanicsSolver s(MPI_COMM_WORLD, &m1, opt);
+  s.set_coupling(fc);
+  fc.set_pressure_change(std::vector<double>(fm.pairs.size(), 0.0));
+  const std::vector<double> history{-2e6, -4e6, -6e6, -4e6, -2e6, -4e6, -7e6, -8e6};
+  std::vector<std::vector<double>> base;
+  mech::SavedState st;
+  contact::FaultContact::Snapshot cst;
+  for (std::size_t k = 0; k < history.size(); ++k) {
+    ASSERT_TRUE(s.advance(block_dp(m1, history[k]), "base").converged);
+    base.push_back(s.gather_displacement());
+    if (k == 2) st = s.gather_state(), cst = fc.save();
+  }
+  s.restore_state(st);
+  fc.restore(cst);
+  for (std::size_t k = 3; k < history.size(); ++k) {
+    ASSERT_TRUE(s.advance(block_dp(m1, history[k]), "rerun").converged);
+    const auto u = s.gather_displacement();
+    double umax = 0, du = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) umax = std::max(umax, std::abs(base[k][i])), du = std::max(du, std::abs(u[i] - base[k][i]));
+    std::printf("rerun step %zu: %.2e of max |u|\n", k + 1, du / umax);
+    EXPECT_LT(du / umax, 1e-8) << "step " << k + 1;
+  }
+}
