@@ -95,15 +95,19 @@ struct Faulted {
 
 // The geostatic step, then the pressure change dp in the region (on the rock and on the fault
 // faces inside it).
-Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double dp, int max_state_changes = 4) {
+Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double dp, int max_state_changes = 4,
+                const std::function<void(contact::FaultModel&)>& tamper = {}, int max_substeps = 64) {
   Faulted f;
   const mech::Model m = mech::build_model(mesh, cs, true);
   f.fm = contact::build_fault_model(mesh, cs, m, contact::geostatic_fault_state(m.initial));
+  if (tamper) tamper(f.fm);
   contact::ContactOptions copt;
   copt.solver = contact::SaddleSolver::Mumps;
   copt.max_state_changes = max_state_changes;
   contact::FaultContact fc(MPI_COMM_WORLD, &f.fm, copt);
-  mech::MechanicsSolver s(MPI_COMM_WORLD, &m, solver_options());
+  mech::SolverOptions opt = solver_options();
+  opt.max_substeps = max_substeps;
+  mech::MechanicsSolver s(MPI_COMM_WORLD, &m, opt);
   s.set_coupling(fc);
   fc.set_pressure_change(std::vector<double>(f.fm.pairs.size(), 0.0));
   f.geostatic = s.advance(std::vector<double>(m.tets.size(), 0.0), "geostatic");
@@ -309,6 +313,31 @@ TEST(SlabFailure, CyclingStateNamesTheFaultAndPairs) {
   ASSERT_FALSE(f.load.converged);
   EXPECT_NE(f.load.failure.find("fault 'F'"), std::string::npos) << f.load.failure;
   EXPECT_NE(f.load.failure.find("node pairs"), std::string::npos) << f.load.failure;
+}
+
+// A failed saddle-point solve names the faults too (it said only "the saddle-point solver (MUMPS)
+// failed: DIVERGED_PC_FAILED"): the slab with the pairs' frames put back to the fault frame with
+// every component active (the former rule: the strike's free part, tan(1e-4 deg), passed its 1e-9
+// threshold) makes the saddle-point system singular.
+TEST(SlabFailure, DivergenceNamesTheFaultAndPairs) {
+  Mesh mesh = test::dipping_slab(false, kTilt);
+  test::insert_all_faults(mesh);
+  auto former = [](contact::FaultModel& fm) {
+    for (auto& p : fm.pairs) {
+      // The tilted normal (the slab's x += tilt y tilts n by n_y = -tilt n_x).
+      Point3 n{p.R[2], -kTilt * p.R[2], p.R[8]};
+      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (double& c : n) c /= l;
+      p.R = contact::fault_frame(n);
+      p.active = 7;
+    }
+  };
+  const Faulted f = faulted(mesh, boundary_case(0, 15), slab_block, -20e6, 4, former, 1);
+  ASSERT_FALSE(f.geostatic.converged && f.load.converged);
+  const std::string& why = f.geostatic.converged ? f.load.failure : f.geostatic.failure;
+  std::printf("%s\n", why.substr(0, 300).c_str());
+  EXPECT_NE(why.find("fault 'F'"), std::string::npos) << why;
+  EXPECT_NE(why.find("node pair"), std::string::npos) << why;
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, Slab, ::testing::Values(false, true),

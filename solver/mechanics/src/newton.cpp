@@ -64,7 +64,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
       const CouplingSolve cs = coupling->solve(A, r, du, rtol);
       s.iterations = cs.iterations;
       if (!cs.ok) {
-        why = cs.failure;
+        why = cs.failure + coupling->diagnosis();
         return false;
       }
     } else {
@@ -109,6 +109,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     rep.residuals.push_back(rk / r0);
     if (!std::isfinite(rk)) {
       why = "the residual is not finite";
+      if (coupling) why += coupling->diagnosis();  // which faults and node pairs
       return false;
     }
     if (rk <= opt.tolerance * r0 && (!coupling || coupling->settled())) {
@@ -117,6 +118,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     }
     if (rk > 1e4 * r0) {
       why = "Newton diverged";
+      if (coupling) why += coupling->diagnosis();
       return false;
     }
     if (coupling) {
