@@ -160,9 +160,10 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
     }
     if (R.fm.redundant_pairs)
       log(1, fmt::format("{} node pairs close cycles at fault junctions (regularised)", R.fm.redundant_pairs));
-    if (R.fm.inactive_pairs)
-      log(1, fmt::format("{} node pairs lie on prescribed boundaries (their traction is carried by the support)",
-                         R.fm.inactive_pairs));
+    if (R.fm.boundary_pairs)
+      log(1, fmt::format("{} node pairs lie on prescribed boundaries (constrained in their free directions only); {} of them "
+                         "lack a free normal or shear and are left out of the statistics",
+                         R.fm.boundary_pairs, R.fm.inactive_pairs));
     R.history = std::make_unique<mech::PressureHistory>(o.pressure, *mesh, R.model);
     log(1, fmt::format("pressure: {} file(s), {} dates, {} of {} elements under a pressure change", o.pressure.size(),
                        R.history->steps().size(), R.history->forced_cells(), R.model.tets.size()));
