@@ -113,7 +113,9 @@ inline Mesh crack_slab_mesh(double psi, double b, int n_half, int n_extra, doubl
 // every node moves by x += tilt * y: the faces' normals leave the x-z plane by atan(tilt) (meshgen's
 // faces are tilted ~1e-4 degrees by rounding) while every side stays within rounding of its plane.
 inline constexpr double kSlabDz = 86.60254037844386;  // 50 tan(60 deg)
-inline Mesh dipping_slab(bool buried, double tilt) {
+// With `crossing`, a vertical fault "G" (the plane x = 300, top to bottom) crosses F at z = -8 dz:
+// an X-junction whose pairs all have y prescribed, and G's pairs on the bottom have only x free.
+inline Mesh dipping_slab(bool buried, double tilt, bool crossing = false) {
   BoxMeshSpec spec;
   spec.x = linspace(0, 600, 12);
   spec.y = {0.0, 50.0};
@@ -122,6 +124,7 @@ inline Mesh dipping_slab(bool buried, double tilt) {
   add_planar_fault(
       m, "F", {0, 0, -14 * kSlabDz}, {-kSlabDz, 0, 50}, [&](const Point3& c) { return !buried || (c[0] > 100 && c[0] < 500); },
       1e-6);
+  if (crossing) add_planar_fault(m, "G", {300, 0, 0}, {1, 0, 0}, [](const Point3&) { return true; }, 1e-6);
   for (auto& p : m.nodes) p[0] += tilt * p[1];
   m.update_entity_bboxes();
   return m;

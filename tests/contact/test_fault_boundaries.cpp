@@ -14,7 +14,9 @@
 //  - Oblique: a 3D fault cut at an oblique strike (fault_cut.hpp, normals scattered by rounding)
 //    meeting the roller sides: locked = continuous to 1e-8 (depletion 10 MPa: 20 MPa opens two
 //    pairs at the block's corner, tension in the continuous model too), and the frictional depletion
-//    of 20 MPa converges with part slipping, on the limit.
+//    of 20 MPa converges with part slipping, on the limit; MUMPS and the Schur field split agree.
+//  - Junction: a vertical fault crossing the slab's dipping one (X-junction on the roller planes,
+//    the vertical fault's pairs on the bottom with x free only): locked = continuous.
 //  - A state that keeps cycling on the slab stops the step naming the fault and its node pairs.
 #include <cmath>
 #include <functional>
@@ -96,13 +98,14 @@ struct Faulted {
 // The geostatic step, then the pressure change dp in the region (on the rock and on the fault
 // faces inside it).
 Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double dp, int max_state_changes = 4,
-                const std::function<void(contact::FaultModel&)>& tamper = {}, int max_substeps = 64) {
+                const std::function<void(contact::FaultModel&)>& tamper = {}, int max_substeps = 64,
+                contact::SaddleSolver solver = contact::SaddleSolver::Mumps) {
   Faulted f;
   const mech::Model m = mech::build_model(mesh, cs, true);
   f.fm = contact::build_fault_model(mesh, cs, m, contact::geostatic_fault_state(m.initial));
   if (tamper) tamper(f.fm);
   contact::ContactOptions copt;
-  copt.solver = contact::SaddleSolver::Mumps;
+  copt.solver = solver;
   copt.max_state_changes = max_state_changes;
   contact::FaultContact fc(MPI_COMM_WORLD, &f.fm, copt);
   mech::SolverOptions opt = solver_options();
@@ -340,6 +343,32 @@ TEST(SlabFailure, DivergenceNamesTheFaultAndPairs) {
   EXPECT_NE(why.find("node pair"), std::string::npos) << why;
 }
 
+// Two faults crossing in the slab (an X-junction on the roller planes y = 0 and y = 50; the vertical
+// one reaches the bottom roller, where its pairs keep only the normal along x): locked = continuous,
+// one pair per junction node closes a cycle.
+TEST(SlabJunction, LockedCrossingFaultsEqualContinuous) {
+  const Mesh plain = test::dipping_slab(false, kTilt, true);
+  Mesh mesh = plain;
+  test::insert_all_faults(mesh);
+  CaseFile cs = boundary_case(1e11, 30);
+  FaultSpec g = cs.faults[0];
+  g.name = "G";
+  g.where = "bound.toml:3";
+  cs.faults.push_back(g);
+  const auto u0 = continuous(plain, cs, slab_block, -20e6);
+  const Faulted f = faulted(mesh, cs, slab_block, -20e6);
+  ASSERT_TRUE(f.geostatic.converged) << f.geostatic.failure;
+  ASSERT_TRUE(f.load.converged) << f.load.failure;
+  const double rel = relative_difference(plain, u0, mesh, f.u);
+  const LawCheck c = check_law(f, 1e11, 30);
+  std::printf("slab junction, locked: %zu pairs, %zu redundant, %zu not frictional, max relative difference %.2e\n",
+              f.fm.pairs.size(), f.fm.redundant_pairs, f.fm.inactive_pairs, rel);
+  EXPECT_EQ(f.fm.redundant_pairs, 2u);  // the junction's two nodes (y = 0 and y = 50)
+  EXPECT_GT(f.fm.inactive_pairs, 0u);   // G on the bottom: x free only
+  EXPECT_LT(rel, 1e-8);
+  EXPECT_EQ(c.slip + c.open, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Faults, Slab, ::testing::Values(false, true),
                          [](const auto& info) { return std::string(info.param ? "buried" : "side_to_side"); });
 
@@ -363,6 +392,12 @@ TEST(Oblique, LockedEqualsContinuousAndFrictionConverges) {
     EXPECT_LT(rel, 1e-8);
     EXPECT_EQ(c.slip + c.open, 0);
     EXPECT_GT(c.boundary, 0);
+    // The Schur field split (augmented constraint rows, multigrid) on the same reduced frames.
+    const Faulted s = faulted(mesh, cs, block_3d, -10e6, 4, {}, 64, contact::SaddleSolver::FieldSplit);
+    ASSERT_TRUE(s.load.converged) << s.load.failure;
+    const double rel_s = relative_difference(plain, u0, mesh, s.u);
+    std::printf("oblique, locked, field split: max relative difference %.2e\n", rel_s);
+    EXPECT_LT(rel_s, 1e-8);
   }
   {
     const CaseFile cs = boundary_case(0, 15);
@@ -377,6 +412,14 @@ TEST(Oblique, LockedEqualsContinuousAndFrictionConverges) {
     EXPECT_LE(c.max_chi, 1 + 1e-9);
     EXPECT_LT(c.worst_limit, 1e-8);
     EXPECT_LT(c.max_cfs, 50e6);
+    const Faulted s = faulted(mesh, cs, block_3d, -20e6, 4, {}, 64, contact::SaddleSolver::FieldSplit);
+    ASSERT_TRUE(s.load.converged) << s.load.failure;
+    double umax = 0, diff = 0;
+    for (std::size_t i = 0; i < f.u.size(); ++i) umax = std::max(umax, std::abs(f.u[i])), diff = std::max(diff, std::abs(f.u[i] - s.u[i]));
+    std::printf("oblique, friction, field split: %d Newton iterations, relative difference to MUMPS %.2e\n",
+                s.load.newton_iterations, diff / umax);
+    EXPECT_LT(diff / umax, 1e-6);
+    EXPECT_EQ(s.res.state, f.res.state);
   }
 }
 
