@@ -13,6 +13,8 @@
 // second the dip direction t2 = n x t1, so (t1, t2, n) is right-handed. On a planar fault every
 // pair and every element share the frame. Multipliers are the total traction on side 1 (the force
 // side 2 exerts per unit area, tension positive) in that frame: lambda = (tau_strike, tau_dip, sigma_n).
+// A pair whose twins share prescribed components (a fault reaching a roller or fixed side) has the
+// reduced frame of constraint_frame instead: multipliers on the free part of the jump only.
 //
 // Junctions: pairs of several faults meeting at a node form cycles of twin constraints (an X-junction
 // has four copies and four pairs), of which one per cycle is implied by the others. The pair that
