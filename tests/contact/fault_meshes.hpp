@@ -13,6 +13,7 @@
 
 #include "ugs/formats/mesh.hpp"
 #include "ugs/meshing/box_mesh.hpp"
+#include "ugs/meshing/fault_cut.hpp"
 #include "ugs/meshing/fault_insert.hpp"
 
 namespace ugs::test {
@@ -101,6 +102,54 @@ inline Mesh crack_slab_mesh(double psi, double b, int n_half, int n_extra, doubl
   add_planar_fault(
       m, "crack", {0, 0, 0}, {-sn, c, 0}, [&](const Point3& p) { return std::abs(p[0] * c + p[1] * sn) < b; }, 1e-9 * b);
   insert_all_faults(m);
+  return m;
+}
+
+// Plane-strain slab in the x-z plane for faults reaching boundaries (test_fault_boundaries): x in
+// [0, 600] m (12 cells of 50 m), one 50 m cell in y, z from -16 dz to 0 with dz = 50 tan(60 deg),
+// and a fault "F" dipping 60 degrees (the cell-diagonal plane through x = 0, z = -14 dz, normal
+// (-dz, 0, dx)). Through: the fault runs from the west side (z = -14 dz) to the east side
+// (z = -2 dz); buried: only its part with 100 < x < 500. The group is added on the exact grid, then
+// every node moves by x += tilt * y: the faces' normals leave the x-z plane by atan(tilt) (meshgen's
+// faces are tilted ~1e-4 degrees by rounding) while every side stays within rounding of its plane.
+inline constexpr double kSlabDz = 86.60254037844386;  // 50 tan(60 deg)
+// With `crossing`, a vertical fault "G" (the plane x = 300, top to bottom) crosses F at z = -8 dz:
+// an X-junction whose pairs all have y prescribed, and G's pairs on the bottom have only x free.
+inline Mesh dipping_slab(bool buried, double tilt, bool crossing = false) {
+  BoxMeshSpec spec;
+  spec.x = linspace(0, 600, 12);
+  spec.y = {0.0, 50.0};
+  spec.z = linspace(-16 * kSlabDz, 0, 16);
+  Mesh m = make_box_mesh(spec);
+  add_planar_fault(
+      m, "F", {0, 0, -14 * kSlabDz}, {-kSlabDz, 0, 50}, [&](const Point3& c) { return !buried || (c[0] > 100 && c[0] < 500); },
+      1e-6);
+  if (crossing) add_planar_fault(m, "G", {300, 0, 0}, {1, 0, 0}, [](const Point3&) { return true; }, 1e-6);
+  for (auto& p : m.nodes) p[0] += tilt * p[1];
+  m.update_entity_bboxes();
+  return m;
+}
+
+// A 3D block 2000 x 1500 x 1500 m (250 m cells) cut by a planar fault "F" of oblique strike (trace
+// from (-300, -200) to (2300, 1700) at z = -200, dipping 60 degrees to the south-east, down to
+// -1300 m) with ugs's conforming cut (fault_cut.hpp): it meets the west, south, east and north sides;
+// its faces' normals scatter by rounding as meshgen's do.
+inline Mesh oblique_fault_block() {
+  BoxMeshSpec spec;
+  spec.x = linspace(0, 2000, 8);
+  spec.y = linspace(0, 1500, 6);
+  spec.z = linspace(-1500, 0, 6);
+  Mesh m = make_box_mesh(spec);
+  FaultTrace t;
+  t.name = "F";
+  t.where = "test";
+  t.parts = {{{-300.0, -200.0}, {2300.0, 1700.0}}};
+  t.top = t.trace_z = -200;
+  t.bottom = -1300;
+  t.dip_deg = 60;
+  t.dip_dir_deg = 143.84;  // normal to the trace, to its right (the trace runs at azimuth 53.84 deg)
+  check_fault_trace(t);
+  cut_faults(m, {t});
   return m;
 }
 

@@ -9,7 +9,8 @@
 //  - bad input exits 2 leaving no results: friction outside (0, 90), negative cohesion, a case
 //    fault that is not in the mesh, a mesh fault the case does not describe, interface elements
 //    without twins, --restart; a Newton failure with slipping pairs exits 1 naming the fault and
-//    its nodes.
+//    its nodes;
+//  - the fault reaching a side with rollers (not fixed) converges, chi <= 1 in the faults CSV.
 #include <cmath>
 #include <filesystem>
 
@@ -247,4 +248,34 @@ TEST(SolveFaults, NewtonFailureNamesTheFaultAndItsNodes) {
   EXPECT_NE(r.err.find("node pairs"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(d / "fail.h5"));
   EXPECT_FALSE(fs::exists(d / "fail_faults.h5"));
+}
+
+// The fault reaching the east side with rollers on every side instead of fixed ones (issue 21):
+// its pairs there have x prescribed and are constrained in y and z only. Formerly the dip and the
+// normal rows both reduced to z there, the saddle-point matrix was singular and ugs-solve stopped
+// with "PETSc error 76 in KSPSolve ... MUMPS ... INFOG(1)=-3".
+TEST(SolveFaults, FaultReachingRollersConverges) {
+  Dir d("solve-faults-rollers");
+  ASSERT_EQ(test::run(make_case(d, "--dp 6 --cell 100")).exit_code, 0);
+  replace_in(d / "case.toml", "fixed = [\"bottom\", \"west\", \"east\", \"south\", \"north\"]",
+             "fixed = []\nrollers = [\"bottom\", \"west\", \"east\", \"south\", \"north\"]");
+  const auto r = test::run(solve(d, "-o " + d / "out.h5 -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("3 node pairs lie on prescribed boundaries"), std::string::npos) << r.err;
+  // The faults CSV at the second date: chi <= 1, Coulomb stress changes of MPa.
+  const std::string csv = test::slurp(d / "out_faults.csv");
+  const auto at = csv.find("\n2001-01-01,F,");
+  ASSERT_NE(at, std::string::npos) << csv;
+  std::vector<double> v;
+  std::string line = csv.substr(at + 15, csv.find('\n', at + 1) - at - 15);
+  for (std::size_t p = 0; p <= line.size();) {
+    const auto e = std::min(line.find(',', p), line.size());
+    v.push_back(std::stod(line.substr(p, e - p)));
+    p = e + 1;
+  }
+  ASSERT_EQ(v.size(), 12u) << line;  // max_chi, x, y, z, max_slip_mm, ..., node_pairs, slipping, open
+  std::printf("fault F reaching rollers: %s\n", line.c_str());
+  EXPECT_LE(v[0], 1.0);
+  EXPECT_LT(std::abs(v[8]), 50.0);  // max_cfs_change_MPa
+  EXPECT_EQ(v[9], 15);              // node pairs in the statistics: all
 }

@@ -717,9 +717,14 @@ std::string FaultContact::diagnosis() {
   std::sort(worst.begin(), worst.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   double local_max = worst.empty() ? 0.0 : worst.front().first, global_max = 0;
   MPI_Allreduce(&local_max, &global_max, 1, MPI_DOUBLE, MPI_MAX, s.comm);
+  if (!(global_max > 0)) {  // e.g. the first solve failed: say so rather than list nothing
+    std::string faults;
+    for (const auto& n : s.fault_names) faults += fmt::format("{}fault '{}'", faults.empty() ? "" : ", ", n);
+    return "; every node pair satisfies its contact equations (" + faults + ")";
+  }
   std::vector<int> top;
   for (std::size_t i = 0; i < worst.size() && i < 6; ++i)
-    if (worst[i].first > 0.1 * global_max && global_max > 0) top.push_back(worst[i].second);
+    if (worst[i].first > 0.1 * global_max) top.push_back(worst[i].second);
   return "; largest contact residuals: " + s.describe(top, "node pairs far from equilibrium");
 }
 

@@ -82,6 +82,76 @@ std::array<double, 9> fault_frame(const Point3& n) {
   return {t1[0], t2[0], n[0], t1[1], t2[1], n[1], t1[2], t2[2], n[2]};
 }
 
+ConstraintFrame constraint_frame(const Point3& n, std::uint8_t fixed1, std::uint8_t fixed2) {
+  ConstraintFrame f;
+  f.R = fault_frame(n);
+  const unsigned free_mask = 7u & ~static_cast<unsigned>(fixed1 & fixed2);
+  if (free_mask == 7) return f;
+  if (free_mask == 0) {
+    f.active = 0;
+    return f;
+  }
+  const V3 nv{n[0], n[1], n[2]};
+  auto axis = [](int c) {
+    V3 e{0, 0, 0};
+    e[c] = 1;
+    return e;
+  };
+  auto unit = [](const V3& v) {
+    const double l = norm(v);
+    return V3{v[0] / l, v[1] / l, v[2] / l};
+  };
+  std::vector<int> in_s, in_f;  // free and prescribed axes
+  for (int c = 0; c < 3; ++c) ((free_mask >> c) & 1 ? in_s : in_f).push_back(c);
+  V3 m{0, 0, 0};
+  for (int c : in_s) m[c] = nv[c];
+  V3 normal, ta, tb;    // the normal slot and the two tangents
+  bool normal_active, ta_active, tb_active;
+  if (norm(m) > kNormalInFree) {
+    normal = unit(m);  // turned into m itself below
+    normal_active = true;
+    if (in_s.size() == 2) {
+      ta = cross(normal, axis(in_f[0]));  // in S (normal to the prescribed axis) and normal to m
+      tb = axis(in_f[0]);
+      ta_active = true, tb_active = false;
+    } else {  // S = one axis, the normal slot itself
+      ta = axis(in_f[0]), tb = axis(in_f[1]);
+      ta_active = tb_active = false;
+    }
+  } else {
+    V3 mf{0, 0, 0};
+    for (int c : in_f) mf[c] = nv[c];
+    normal = unit(mf);
+    normal_active = false;
+    if (in_s.size() == 2) {  // one prescribed axis: the normal is along it, S is its complement
+      ta = axis(in_s[0]), tb = axis(in_s[1]);
+      ta_active = tb_active = true;
+    } else {
+      ta = axis(in_s[0]);
+      tb = cross(normal, ta);  // normal to S and to the normal slot: a prescribed direction
+      ta_active = true, tb_active = false;
+    }
+  }
+  // Slots: the pairing of (ta, tb) with (strike, dip) that keeps them closest, each turned to its
+  // fault-frame tangent.
+  const V3 t1{f.R[0], f.R[3], f.R[6]}, t2{f.R[1], f.R[4], f.R[7]};
+  if (std::abs(dot(tb, t1)) + std::abs(dot(ta, t2)) > std::abs(dot(ta, t1)) + std::abs(dot(tb, t2))) {
+    std::swap(ta, tb);
+    std::swap(ta_active, tb_active);
+  }
+  if (dot(ta, t1) < 0) ta = {-ta[0], -ta[1], -ta[2]};
+  if (dot(tb, t2) < 0) tb = {-tb[0], -tb[1], -tb[2]};
+  // An active normal slot is m = P_S n itself: the constraint row m . g = n . g is the fault's own
+  // normal gap (g lies in S) and the force of a normal traction sigma_n, A sigma_n m, is the free
+  // part of A sigma_n n, so lambda_n stays the fault's normal traction (and lambda_n + p_f its
+  // effective normal traction). The active tangent is normal to m within S, hence to n: a shear
+  // direction of the fault.
+  if (normal_active) normal = m;
+  for (int c = 0; c < 3; ++c) f.R[3 * c] = ta[c], f.R[3 * c + 1] = tb[c], f.R[3 * c + 2] = normal[c];
+  f.active = static_cast<std::uint8_t>((ta_active ? 1 : 0) | (tb_active ? 2 : 0) | (normal_active ? 4 : 0));
+  return f;
+}
+
 InitialFaultState geostatic_fault_state(const mech::InitialState& init) {
   InitialFaultState s;
   s.total_stress = [init](const Point3& x, double biot) {
@@ -271,24 +341,29 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
     ++fm.faults[p.fault].pairs;
     const double l = norm(nsum[q]);
     const V3 n = l > 0 ? V3{nsum[q][0] / l, nsum[q][1] / l, nsum[q][2] / l} : V3{0, 0, 1};
-    p.R = fault_frame(n);
+    p.fixed1 = model.fixed[p.side1];
+    p.fixed2 = model.fixed[p.side2];
+    // The constraint frame: exactly the free part of the jump carries multipliers.
+    const ConstraintFrame cf = constraint_frame(n, p.fixed1, p.fixed2);
+    p.R = cf.R;
+    p.active = cf.active;
     p.k = ksum[q] / p.area;
     const double biot = bsum[q] / p.area;
     const fem::Vec6 s = init.total_stress(p.x, biot);
-    // Traction t = sigma n (thesis Voigt order xx yy zz yz xz xy).
+    // Traction t = sigma n (thesis Voigt order xx yy zz yz xz xy), in the pair's frame. A held
+    // tangent slot of a reduced frame is a prescribed direction: its traction is the support's
+    // reaction, not the fault's, and is reported as 0 (it enters no equation but its own hold).
     const V3 t = {s[0] * n[0] + s[5] * n[1] + s[4] * n[2], s[5] * n[0] + s[1] * n[1] + s[3] * n[2],
                   s[4] * n[0] + s[3] * n[1] + s[2] * n[2]};
-    for (int j = 0; j < 3; ++j) p.lambda0[j] = p.R[j] * t[0] + p.R[3 + j] * t[1] + p.R[6 + j] * t[2];
+    const bool reduced = (p.fixed1 & p.fixed2) != 0;
+    for (int j = 0; j < 3; ++j) {
+      p.lambda0[j] = p.R[j] * t[0] + p.R[3 + j] * t[1] + p.R[6 + j] * t[2];
+      if (reduced && p.active != 0 && j < 2 && !((p.active >> j) & 1)) p.lambda0[j] = 0;
+    }
+    if (reduced && p.active != 0) p.lambda0[2] = dot(n, t);  // the fault's normal traction
     p.p0 = init.pressure(p.x);
-    p.fixed1 = model.fixed[p.side1];
-    p.fixed2 = model.fixed[p.side2];
-    p.active = 0;
-    for (int j = 0; j < 3; ++j)
-      for (int c = 0; c < 3; ++c) {
-        const bool free_dof = !((p.fixed1 >> c) & 1) || !((p.fixed2 >> c) & 1);
-        if (free_dof && std::abs(p.R[3 * c + j]) > 1e-9) p.active |= static_cast<std::uint8_t>(1u << j);
-      }
-    if (!(p.active & 4)) ++fm.inactive_pairs;
+    if (reduced) ++fm.boundary_pairs;
+    if (!p.frictional()) ++fm.inactive_pairs;
     if (!dsu.unite(p.side1, p.side2)) {
       p.redundant = true;
       ++fm.redundant_pairs;

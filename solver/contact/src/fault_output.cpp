@@ -55,7 +55,7 @@ std::vector<FaultDateStats> fault_date_stats(const FaultModel& fm, const FaultFi
   std::vector<FaultDateStats> s(fm.faults.size());
   for (std::size_t q = 0; q < fm.pairs.size(); ++q) {
     const NodePair& p = fm.pairs[q];
-    if (!(p.active & 4)) continue;
+    if (!p.frictional()) continue;
     FaultDateStats& d = s[p.fault];
     ++d.pairs;
     if (f.chi[q] > d.max_chi || d.pairs == 1) d.max_chi = f.chi[q], d.at = p.x;
@@ -189,7 +189,7 @@ FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path
   const std::size_t n = S.node_pair.size();
   s.direct.assign(n, -1);
   for (std::size_t i = 0; i < n; ++i)
-    if (S.node_pair[i] >= 0 && (fm.pairs[S.node_pair[i]].active & 4)) s.direct[i] = S.node_pair[i];
+    if (S.node_pair[i] >= 0 && fm.pairs[S.node_pair[i]].frictional()) s.direct[i] = S.node_pair[i];
   s.neighbours.resize(n);
   for (const auto& t : S.triangles)
     for (int a = 0; a < 3; ++a)

@@ -23,16 +23,15 @@ PairEquations pair_equations(const PairLaw& L, const std::array<double, 3>& lam,
     e.F[j] = A * (lam[j] - lam0[j]);
     e.Jl[4 * j] = A;
   };
-  if (!(L.active & 4)) {
-    for (int j = 0; j < 3; ++j) hold(j);
-    return e;
-  }
+  // A held normal (a pair whose free directions lie in the fault plane, constraint_frame): the
+  // normal traction keeps its initial value and the shear obeys friction under it.
+  const bool normal = (L.active & 4) != 0;
   const bool act[2] = {(L.active & 1) != 0, (L.active & 2) != 0};
   const double sn = lam[2] + p_f;
   // Hysteresis band: round-off of the stress scale of the pair.
   const double band = 1e-9 * (std::abs(lam[0]) + std::abs(lam[1]) + std::abs(lam[2]) + std::abs(p_f) + L.cohesion + 1.0);
   const double open_test = sn + L.k * g[2];
-  if (previous == PairState::Open ? open_test > -band : open_test > band) {
+  if (normal && (previous == PairState::Open ? open_test > -band : open_test > band)) {
     e.state = PairState::Open;
     e.F[2] = A * sn;
     e.Jl[8] = A;
@@ -47,8 +46,12 @@ PairEquations pair_equations(const PairLaw& L, const std::array<double, 3>& lam,
     return e;
   }
   // Contact: the normal gap closes.
-  e.F[2] = kA * g[2];
-  e.Jg[8] = kA;
+  if (normal) {
+    e.F[2] = kA * g[2];
+    e.Jg[8] = kA;
+  } else {
+    hold(2);
+  }
   double tau_L = L.cohesion - L.mu * sn, dtau_dln = -L.mu;
   if (tau_L < 0) tau_L = 0, dtau_dln = 0;
   std::array<double, 2> eta{0, 0};

@@ -88,7 +88,7 @@ struct Watch {
 
   void see(const FaultModel& fm, const FaultFields& f, const std::string& d) {
     for (std::size_t q = 0; q < fm.pairs.size(); ++q) {
-      if (!(fm.pairs[q].active & 4)) continue;
+      if (!fm.pairs[q].frictional()) continue;
       const bool hit = f.state[q] != 0 || f.chi[q] >= 1 - 1e-9;
       if (f.chi[q] > max_chi) max_chi = f.chi[q];
       if (hit && !critical) {
@@ -146,7 +146,7 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
       double chi0 = 0;
       std::size_t over = 0;
       for (const auto& p : R.fm.pairs) {
-        if (&R.fm.faults[p.fault] != &f || !(p.active & 4)) continue;
+        if (&R.fm.faults[p.fault] != &f || !p.frictional()) continue;
         const double c = safety_factor(std::hypot(p.lambda0[0], p.lambda0[1]), p.lambda0[2] + p.p0, f.cohesion, f.mu,
                                        p.lambda0[2] + p.p0 > 0 ? PairState::Open : PairState::Stick);
         chi0 = std::max(chi0, c);
@@ -161,9 +161,10 @@ mech::RunSummary run_faulted(MPI_Comm comm, const mech::RunOptions& o, const Fau
     }
     if (R.fm.redundant_pairs)
       log(1, fmt::format("{} node pairs close cycles at fault junctions (regularised)", R.fm.redundant_pairs));
-    if (R.fm.inactive_pairs)
-      log(1, fmt::format("{} node pairs lie on prescribed boundaries (their traction is carried by the support)",
-                         R.fm.inactive_pairs));
+    if (R.fm.boundary_pairs)
+      log(1, fmt::format("{} node pairs lie on prescribed boundaries (constrained in their free directions only); {} of them "
+                         "lack a free normal or shear and are left out of the statistics",
+                         R.fm.boundary_pairs, R.fm.inactive_pairs));
     R.history = std::make_unique<mech::PressureHistory>(o.pressure, *mesh, R.model);
     log(1, fmt::format("pressure: {} file(s), {} dates, {} of {} elements under a pressure change", o.pressure.size(),
                        R.history->steps().size(), R.history->forced_cells(), R.model.tets.size()));

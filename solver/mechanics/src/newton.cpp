@@ -77,7 +77,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
       const CouplingSolve cs = coupling->solve(A, r, du, rtol);
       s.iterations = cs.iterations;
       if (!cs.ok) {
-        why = cs.failure;
+        why = cs.failure + coupling->diagnosis();
         return false;
       }
     } else {
@@ -122,6 +122,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     rep.residuals.push_back(rk / r0);
     if (!std::isfinite(rk)) {
       why = "the residual is not finite";
+      if (coupling) why += coupling->diagnosis();  // which faults and node pairs
       return false;
     }
     if (rk <= opt.tolerance * r0 && (!coupling || coupling->settled())) {
@@ -130,6 +131,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     }
     if (rk > 1e4 * r0) {
       why = "Newton diverged";
+      if (coupling) why += coupling->diagnosis();
       return false;
     }
     if (coupling) {

@@ -13,6 +13,8 @@
 // second the dip direction t2 = n x t1, so (t1, t2, n) is right-handed. On a planar fault every
 // pair and every element share the frame. Multipliers are the total traction on side 1 (the force
 // side 2 exerts per unit area, tension positive) in that frame: lambda = (tau_strike, tau_dip, sigma_n).
+// A pair whose twins share prescribed components (a fault reaching a roller or fixed side) has the
+// reduced frame of constraint_frame instead: multipliers on the free part of the jump only.
 //
 // Junctions: pairs of several faults meeting at a node form cycles of twin constraints (an X-junction
 // has four copies and four pairs), of which one per cycle is implied by the others. The pair that
@@ -53,8 +55,12 @@ struct NodePair {
   double p0 = 0;                       // initial fluid pressure on the fault [Pa]
   double k = 0;                        // stiffness scale E_oed / h of the adjacent elements [Pa/m]
   std::uint8_t fixed1 = 0, fixed2 = 0; // prescribed displacement components of the twins (bits x, y, z)
-  std::uint8_t active = 7;             // bit j: local component j acts on some free degree of freedom
+  std::uint8_t active = 7;             // bit j: local component j carries a multiplier (constraint_frame)
   bool redundant = false;              // closes a cycle of pairs at a junction
+
+  // The pair obeys the friction law with its normal and at least one shear direction free: it counts
+  // in the fault statistics (max chi, slipping and open pairs) and the scenario search.
+  bool frictional() const { return (active & 4) && (active & 3); }
 };
 
 // The output surface: one triangle per interface element (its side-1 face), one node per node pair
@@ -72,7 +78,8 @@ struct FaultModel {
   std::vector<NodePair> pairs;
   FaultSurface surface;
   std::size_t redundant_pairs = 0;
-  std::size_t inactive_pairs = 0;      // normal component on prescribed dofs only (model boundary)
+  std::size_t inactive_pairs = 0;      // pairs on prescribed boundaries that are not frictional()
+  std::size_t boundary_pairs = 0;      // pairs with a reduced frame (some jump component prescribed)
 };
 
 // Initial state of the faults: total stress (thesis Voigt order, Pa, tension positive) and fluid
@@ -94,5 +101,29 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
 
 // Local frame (t1, t2, n) of a unit normal, row-major with the axes as columns.
 std::array<double, 9> fault_frame(const Point3& n);
+
+// The constraint frame of a node pair whose twins have the prescribed components fixed1, fixed2
+// (bits x, y, z). The relative displacement g = u2 - u1 lives in S = span{e_c : c free on either
+// twin} (a component prescribed on both twins has no jump: rollers and fixed sides prescribe zero).
+// The frame R (columns: two tangents and the normal slot, mutually orthogonal) puts a basis of S in
+// the active slots and the directions normal to S in held slots (no multiplier: their traction is
+// the support's reaction), so the active constraint rows are exactly independent whatever the tilt
+// of n (no threshold on the geometry decides which rows exist):
+//   - S = R^3: the fault frame, active 7;
+//   - the normal's part in S, m = P_S n, with |m| > kNormalInFree: the normal slot is m (not
+//     normalised: m . g = n . g, the fault's normal gap; the multiplier is the fault's normal
+//     traction), the tangent slots the unit direction of S normal to m (active; a shear direction
+//     of the fault) and the prescribed axes (held);
+//   - |m| <= kNormalInFree (the free directions lie in the fault plane): the normal slot is the part
+//     of n normal to S (held: the traction keeps its initial value), S in the tangent slots (active,
+//     friction under that normal traction);
+//   - S empty (fully fixed twins): the fault frame, nothing active.
+// The tangent slots follow the fault frame's (strike, dip) as closely as the subspaces allow.
+struct ConstraintFrame {
+  std::array<double, 9> R{};
+  std::uint8_t active = 7;
+};
+inline constexpr double kNormalInFree = 1e-3;  // 0.06 degrees; meshgen's normals tilt ~2e-6 rad
+ConstraintFrame constraint_frame(const Point3& n, std::uint8_t fixed1, std::uint8_t fixed2);
 
 }  // namespace ugs::contact

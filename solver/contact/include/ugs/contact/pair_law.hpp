@@ -16,8 +16,9 @@
 // traction is aligned with the slip as maximum plastic dissipation requires (eqs. 3.25-3.26).
 //
 // Every equation is scaled to a force [N] (constraints by k A, tractions by A), so one norm
-// measures the unbalanced forces of the whole system. Components that act on prescribed degrees
-// of freedom only (the pair lies on a fixed boundary) keep their initial traction.
+// measures the unbalanced forces of the whole system. Components that are not active (held slots of
+// a pair on a prescribed boundary, fault_model.hpp constraint_frame) keep their initial traction;
+// a pair with a held normal keeps friction on its active shear under that normal traction.
 #pragma once
 #include <array>
 #include <cstdint>
