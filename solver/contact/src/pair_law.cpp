@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ugs/contact/dof_mask.hpp"
+
 namespace ugs::contact {
 
 const char* pair_state_name(PairState s) {
@@ -23,11 +25,11 @@ PairEquations pair_equations(const PairLaw& L, const std::array<double, 3>& lam,
     e.F[j] = A * (lam[j] - lam0[j]);
     e.Jl[4 * j] = A;
   };
-  if (!(L.active & 4)) {
+  if (!normal_active(L.active)) {
     for (int j = 0; j < 3; ++j) hold(j);
     return e;
   }
-  const bool act[2] = {(L.active & 1) != 0, (L.active & 2) != 0};
+  const bool act[2] = {is_active(L.active, kStrike), is_active(L.active, kDip)};
   const double sn = lam[2] + p_f;
   // Hysteresis band: round-off of the stress scale of the pair.
   const double band = 1e-9 * (std::abs(lam[0]) + std::abs(lam[1]) + std::abs(lam[2]) + std::abs(p_f) + L.cohesion + 1.0);
