@@ -10,8 +10,11 @@
 // Checks, on the node pairs at least 0.1 h (along the fault) from the four corners:
 //  - error: max |d lambda - closed form| of the normal and the dip shear traction change, relative
 //    to the peak shear change of the closed form over the same points;
-//  - roughness: max |t_i - (t_{i-1} + t_{i+1}) / 2| over consecutive pairs along the dip line
-//    (front side), relative to the same peak (docs/fault-mechanics.md);
+//  - roughness: max |e_i - (e_{i-1} + e_{i+1}) / 2| of the error e = computed - closed form over
+//    consecutive pairs along the dip line (front side, the three in one stretch between corners),
+//    relative to the same peak (docs/fault-mechanics.md; the same on the computed profile, which
+//    includes the closed form's curvature, is printed too), and the front/back half-difference;
+//  - irregular meshes: nodes moved by up to a quarter cell, off the fault only or along it too;
 //  - the fast case (12 cells per h) in CI, the three refinements (6, 12, 24) labelled long.
 // The profiles go to <build>/tests/contact/v8_profile_<n>.csv (plot_offset_fault.py).
 #include <algorithm>
