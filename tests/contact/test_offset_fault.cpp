@@ -15,7 +15,7 @@
 //    relative to the same peak (docs/fault-mechanics.md; the same on the computed profile, which
 //    includes the closed form's curvature, is printed too), and the front/back half-difference;
 //  - irregular meshes: nodes moved by up to a quarter cell, off the fault only or along it too;
-//  - the fast case (12 cells per h) in CI, the three refinements (6, 12, 24) labelled long.
+//  - the fast case (12 cells per h) in CI, the three refinements (6, 12, 24) in test_offset_fault_long (bench-long).
 // The profiles go to <build>/tests/contact/v8_profile_<n>.csv (plot_offset_fault.py).
 #include <algorithm>
 #include <cmath>
