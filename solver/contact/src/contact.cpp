@@ -4,20 +4,24 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <numeric>
 
 #include <fmt/format.h>
-#include <petscksp.h>
 
-#include "petsc_call.hpp"
+#include "pair_distribution.hpp"
+#include "saddle_solver.hpp"
+#include "saddle_system.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
 
-#define CHK UGS_CONTACT_PETSC
-
+// FaultContact in three parts (each in its own file): the pair distribution (which rank owns which
+// node pair, the pairs' data, the twins' displacements), the saddle system (the blocks C, B, D) and
+// the saddle solver (MUMPS or the field split with the augmentation). This file keeps the contact
+// state of the owned pairs (multipliers, gaps, states at the iterate, the sub-step and the step),
+// evaluates the contact law (the residual) and drives the three parts.
 namespace ugs::contact {
 namespace {
+
+using detail::PairData;
 
 // -ugs_contact_monitor: every node pair that changes state (stick, slip, open) in an iteration.
 bool contact_monitor() {
@@ -25,35 +29,12 @@ bool contact_monitor() {
   return on;
 }
 
-// What the owner of a pair needs to know about it (sent from rank 0 as bytes).
-struct PairData {
-  std::int64_t g1, g2;              // global nodes of side 1 and side 2
-  std::uint64_t tag1, tag2;         // mesh node tags (messages)
-  std::uint32_t model_index;
-  std::int32_t fault;
-  double area, k, cohesion, mu, p0;
-  double R[9];
-  double lam0[3];
-  double x[3];
-  std::uint8_t fixed1, fixed2, active, redundant;
-};
-
 std::string broadcast_string(MPI_Comm comm, std::string s) {
   unsigned long n = s.size();
   MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, 0, comm);
   s.resize(n);
   if (n) MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, comm);
   return s;
-}
-
-bool has_option(const char* name) {
-  PetscBool has = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, nullptr, name, &has);
-  return has == PETSC_TRUE;
-}
-
-void default_option(const char* name, const char* value) {
-  if (!has_option(name)) CHK(PetscOptionsSetValue(nullptr, name, value));
 }
 
 }  // namespace
@@ -70,15 +51,14 @@ struct FaultContact::Impl {
   int rank = 0, size = 1;
   const FaultModel* fm = nullptr;
   ContactOptions opt;
-  SaddleSolver solver = SaddleSolver::Mumps;
   std::vector<std::string> fault_names;
 
-  // ---- pairs of this rank ---------------------------------------------------------------------
-  std::vector<PairData> P_;
+  detail::PairDistribution pairs;     // owned pairs, the exchange with rank 0, the twins' displacements
+  detail::SaddleSystem system;        // C, B, D
+  detail::SaddlePointSolver linear;   // MUMPS or the field split
+
+  // ---- contact state of the owned pairs -------------------------------------------------------
   int m = 0;                                  // owned pairs
-  PetscInt M = 0, lam_begin = 0;              // global pairs, first owned pair
-  std::vector<int> pairs_of_rank;             // every rank
-  std::vector<std::uint32_t> order;           // rank 0: global pair -> model pair
   std::vector<std::array<double, 3>> lam, lam_c, lam_step, g, gc, gc_step;
   std::vector<double> dp_now, dp_c, dp_start, dp_target;  // fluid pressure change [Pa]
   std::vector<PairState> st, st_prev, st_c, st_step;
@@ -87,33 +67,11 @@ struct FaultContact::Impl {
   std::vector<PairEquations> eq;
   bool settled_flag = true;
 
-  // ---- displacement layout --------------------------------------------------------------------
-  mech::CouplingContext ctx;
-  std::vector<std::uint8_t> owned_fixed;
-  std::vector<Point3> owned_x;
-
-  // ---- PETSc ----------------------------------------------------------------------------------
-  VecScatter scatter = nullptr;
-  Vec useq = nullptr, dl = nullptr, fc = nullptr, rhs = nullptr, sol = nullptr, wr = nullptr;
-  Mat Ct = nullptr, C = nullptr, B = nullptr, D = nullptr, WB = nullptr, G = nullptr, Kg = nullptr;
-  Mat J = nullptr, Jaij = nullptr;
-  Mat A_seen = nullptr;
-  KSP ksp = nullptr;
-  bool pc_built = false;
-  int baseline_its = 0, last_its = 0;
+  std::vector<std::uint8_t> owned_fixed;      // prescribed components of the owned nodes
   ContactStats stats;
 
-  ~Impl() {
-    if (ksp) KSPDestroy(&ksp);
-    for (Mat* a : {&Ct, &C, &B, &D, &WB, &G, &Kg, &J, &Jaij})
-      if (*a) MatDestroy(a);
-    for (Vec* v : {&useq, &dl, &fc, &rhs, &sol, &wr})
-      if (*v) VecDestroy(v);
-    if (scatter) VecScatterDestroy(&scatter);
-  }
-
   PairLaw law(int q) const {
-    const PairData& d = P_[q];
+    const PairData& d = pairs.pairs[q];
     PairLaw L;
     L.area = d.area;
     L.k = d.k;
@@ -125,68 +83,11 @@ struct FaultContact::Impl {
   }
 
   // ---- setup ----------------------------------------------------------------------------------
-  void distribute_pairs() {
-    std::vector<PairData> all;
-    std::vector<int> counts(size, 0);
-    if (rank == 0) {
-      const auto& nb = ctx.node_begin_of_rank;
-      std::vector<int> owner(fm->pairs.size());
-      for (std::size_t q = 0; q < fm->pairs.size(); ++q) {
-        const std::int64_t g1 = ctx.global_of_mesh_node[fm->pairs[q].side1];
-        owner[q] = static_cast<int>(std::upper_bound(nb.begin(), nb.end(), g1) - nb.begin()) - 1;
-        ++counts[owner[q]];
-      }
-      order.resize(fm->pairs.size());
-      std::iota(order.begin(), order.end(), 0u);
-      std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return owner[a] < owner[b]; });
-      all.resize(order.size());
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        const NodePair& p = fm->pairs[order[i]];
-        const FaultProperties& f = fm->faults[p.fault];
-        PairData& d = all[i];
-        std::memset(&d, 0, sizeof d);
-        d.g1 = ctx.global_of_mesh_node[p.side1];
-        d.g2 = ctx.global_of_mesh_node[p.side2];
-        d.tag1 = p.tag1;
-        d.tag2 = p.tag2;
-        d.model_index = order[i];
-        d.fault = p.fault;
-        d.area = p.area;
-        d.k = p.k;
-        d.cohesion = f.cohesion;
-        d.mu = f.mu;
-        d.p0 = p.p0;
-        std::copy(p.R.begin(), p.R.end(), d.R);
-        std::copy(p.lambda0.begin(), p.lambda0.end(), d.lam0);
-        std::copy(p.x.begin(), p.x.end(), d.x);
-        d.fixed1 = p.fixed1;
-        d.fixed2 = p.fixed2;
-        d.active = p.active;
-        d.redundant = p.redundant ? 1 : 0;
-      }
-    }
-    MPI_Bcast(counts.data(), size, MPI_INT, 0, comm);
-    pairs_of_rank = counts;
-    m = counts[rank];
-    M = 0;
-    for (int r = 0; r < size; ++r) {
-      if (r == rank) lam_begin = M;
-      M += counts[r];
-    }
-    P_.resize(m);
-    std::vector<int> bytes(size), displs(size, 0);
-    for (int r = 0; r < size; ++r) bytes[r] = counts[r] * static_cast<int>(sizeof(PairData));
-    for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + bytes[r - 1];
-    MPI_Scatterv(all.data(), bytes.data(), displs.data(), MPI_BYTE, P_.data(), bytes[rank], MPI_BYTE, 0, comm);
-  }
-
   void setup(const mech::CouplingContext& c) {
-    ctx = c;
     comm = c.comm;
     rank = c.rank;
     size = c.size;
     owned_fixed.assign(c.owned_fixed->begin(), c.owned_fixed->begin() + c.n_owned);
-    owned_x.assign(c.owned_x->begin(), c.owned_x->begin() + c.n_owned);
     std::string names;
     if (rank == 0)
       for (const auto& f : fm->faults) names += f.name + '\n';
@@ -196,10 +97,11 @@ struct FaultContact::Impl {
       fault_names.push_back(names.substr(p, e - p));
       p = e + 1;
     }
-    distribute_pairs();
+    pairs.build(c, fm);
+    m = pairs.m;
 
     lam.resize(m);
-    for (int q = 0; q < m; ++q) lam[q] = {P_[q].lam0[0], P_[q].lam0[1], P_[q].lam0[2]};
+    for (int q = 0; q < m; ++q) lam[q] = {pairs.pairs[q].lam0[0], pairs.pairs[q].lam0[1], pairs.pairs[q].lam0[2]};
     lam_c = lam_step = lam;
     g.assign(m, {0, 0, 0});
     gc = gc_step = g;
@@ -211,124 +113,17 @@ struct FaultContact::Impl {
     changed_last.assign(m, 0);
     eq.resize(m);
 
-    const PetscInt n3 = 3 * c.n_owned, m3 = 3 * m;
-    // u at both twins of every owned pair.
-    {
-      std::vector<PetscInt> idx(6 * m);
-      for (int q = 0; q < m; ++q)
-        for (int k = 0; k < 3; ++k) {
-          idx[6 * q + k] = static_cast<PetscInt>(3 * P_[q].g1 + k);
-          idx[6 * q + 3 + k] = static_cast<PetscInt>(3 * P_[q].g2 + k);
-        }
-      IS is;
-      CHK(ISCreateGeneral(PETSC_COMM_SELF, 6 * m, idx.data(), PETSC_COPY_VALUES, &is));
-      CHK(VecCreateSeq(PETSC_COMM_SELF, 6 * m, &useq));
-      CHK(VecScatterCreate(c.u, is, useq, nullptr, &scatter));
-      CHK(ISDestroy(&is));
-    }
-    // C^T (multiplier rows, constant) and the pattern of B: both twins' free components.
-    auto owned_col = [&](std::int64_t gnode) { return gnode >= c.node_begin && gnode < c.node_begin + c.n_owned; };
-    std::vector<PetscInt> dnz(m3, 0), onz(m3, 0);
-    for (int q = 0; q < m; ++q)
-      for (int j = 0; j < 3; ++j) {
-        const PairData& d = P_[q];
-        for (int k = 0; k < 3; ++k) {
-          if (!((d.fixed1 >> k) & 1)) ++(owned_col(d.g1) ? dnz : onz)[3 * q + j];
-          if (!((d.fixed2 >> k) & 1)) ++(owned_col(d.g2) ? dnz : onz)[3 * q + j];
-        }
-      }
-    CHK(MatCreateAIJ(comm, m3, n3, PETSC_DETERMINE, PETSC_DETERMINE, 0, dnz.data(), 0, onz.data(), &Ct));
-    CHK(MatCreateAIJ(comm, m3, n3, PETSC_DETERMINE, PETSC_DETERMINE, 0, dnz.data(), 0, onz.data(), &B));
-    for (int q = 0; q < m; ++q) {
-      const PairData& d = P_[q];
-      for (int j = 0; j < 3; ++j) {
-        const PetscInt row = static_cast<PetscInt>(3 * (lam_begin + q) + j);
-        PetscInt cols[6];
-        double vals[6], zeros[6] = {0, 0, 0, 0, 0, 0};
-        int n = 0;
-        for (int k = 0; k < 3; ++k)
-          if (!((d.fixed1 >> k) & 1)) cols[n] = static_cast<PetscInt>(3 * d.g1 + k), vals[n++] = -d.area * d.R[3 * k + j];
-        for (int k = 0; k < 3; ++k)
-          if (!((d.fixed2 >> k) & 1)) cols[n] = static_cast<PetscInt>(3 * d.g2 + k), vals[n++] = d.area * d.R[3 * k + j];
-        CHK(MatSetValues(Ct, 1, &row, n, cols, vals, INSERT_VALUES));
-        CHK(MatSetValues(B, 1, &row, n, cols, zeros, INSERT_VALUES));
-      }
-    }
-    CHK(MatAssemblyBegin(Ct, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyEnd(Ct, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
-    CHK(MatSetOption(B, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-    CHK(MatTranspose(Ct, MAT_INITIAL_MATRIX, &C));
-    CHK(MatCreateAIJ(comm, m3, m3, PETSC_DETERMINE, PETSC_DETERMINE, 3, nullptr, 0, nullptr, &D));
-    for (int q = 0; q < m; ++q) {
-      const PetscInt r0 = static_cast<PetscInt>(3 * (lam_begin + q));
-      const PetscInt rows[3] = {r0, r0 + 1, r0 + 2};
-      const double zeros[9] = {};
-      CHK(MatSetValues(D, 3, rows, 3, rows, zeros, INSERT_VALUES));
-    }
-    CHK(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyEnd(D, MAT_FINAL_ASSEMBLY));
-    CHK(MatSetOption(D, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-    CHK(MatCreateVecs(C, &dl, &fc));
-    CHK(VecCreateMPI(comm, n3 + m3, PETSC_DETERMINE, &rhs));
-    CHK(VecDuplicate(rhs, &sol));
-    CHK(VecDuplicate(dl, &wr));
-
-    // The linear solver (-contact_augmentation overrides the augmentation of the field split).
-    {
-      PetscReal g = opt.augmentation;
-      PetscBool set = PETSC_FALSE;
-      CHK(PetscOptionsGetReal(nullptr, nullptr, "-contact_augmentation", &g, &set));
-      if (set) opt.augmentation = g;
-    }
-    const double unknowns = 3.0 * static_cast<double>(c.n_global_nodes) + 3.0 * static_cast<double>(M);
-    solver = opt.solver;
-    if (solver == SaddleSolver::Auto) solver = unknowns <= static_cast<double>(opt.direct_limit) ? SaddleSolver::Mumps : SaddleSolver::FieldSplit;
-    CHK(KSPCreate(comm, &ksp));
-    CHK(KSPSetOptionsPrefix(ksp, "contact_"));
-    PC pc;
-    CHK(KSPGetPC(ksp, &pc));
-    if (solver == SaddleSolver::Mumps) {
-      CHK(KSPSetType(ksp, KSPPREONLY));
-      CHK(PCSetType(pc, PCLU));
-      CHK(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-      // Extra workspace: pivoting on the multiplier rows fills more than MUMPS' estimate.
-      default_option("-contact_mat_mumps_icntl_14", "60");
-    } else {
-      CHK(KSPSetType(ksp, KSPFGMRES));
-      CHK(KSPGMRESSetRestart(ksp, 200));
-      CHK(PCSetType(pc, PCFIELDSPLIT));
-      CHK(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
-      // Upper block-triangular: one multigrid cycle per iteration (full: two, for ~20 % fewer iterations).
-      CHK(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
-      CHK(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr));
-      default_option("-contact_fieldsplit_u_ksp_type", "preonly");
-      default_option("-contact_fieldsplit_u_pc_type", opt.amg == "hypre" ? "hypre" : "gamg");
-      if (opt.amg == "hypre") {
-        default_option("-contact_fieldsplit_u_pc_hypre_type", "boomeramg");
-        default_option("-contact_fieldsplit_u_pc_hypre_boomeramg_nodal_coarsen", "6");
-        // Variant 3 (as the continuous solver uses) crashes inside BoomerAMG on this block
-        // (hypre 2.26, hypre_BoomerAMG_LNExpandInterp); variant 2 works.
-        default_option("-contact_fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant", "2");
-        default_option("-contact_fieldsplit_u_pc_hypre_boomeramg_strong_threshold", "0.5");
-      }
-      default_option("-contact_fieldsplit_lambda_ksp_type", "preonly");
-      default_option("-contact_fieldsplit_lambda_pc_type", "bjacobi");
-    }
-    CHK(KSPSetTolerances(ksp, 1e-9, 1e-300, PETSC_DEFAULT, 2000));
+    system.create(c, pairs);
+    linear.setup(c, pairs, system, opt);
   }
 
   // ---- residual -------------------------------------------------------------------------------
   double residual(Vec u, Vec r) {
-    CHK(VecScatterBegin(scatter, u, useq, INSERT_VALUES, SCATTER_FORWARD));
-    CHK(VecScatterEnd(scatter, u, useq, INSERT_VALUES, SCATTER_FORWARD));
-    const PetscScalar* ua = nullptr;
-    CHK(VecGetArrayRead(useq, &ua));
+    const PetscScalar* ua = pairs.twins(u);
     double ss = 0;
     int changes = 0;
     for (int q = 0; q < m; ++q) {
-      const PairData& d = P_[q];
+      const PairData& d = pairs.pairs[q];
       double ur[3];
       for (int k = 0; k < 3; ++k) ur[k] = ua[6 * q + 3 + k] - ua[6 * q + k];
       for (int j = 0; j < 3; ++j) g[q][j] = d.R[j] * ur[0] + d.R[3 + j] * ur[1] + d.R[6 + j] * ur[2];
@@ -344,204 +139,33 @@ struct FaultContact::Impl {
       st_prev[q] = st[q];
       for (double f : eq[q].F) ss += f * f;
     }
-    CHK(VecRestoreArrayRead(useq, &ua));
+    pairs.restore_twins(ua);
     stats.state_changes += changes;
     int any = 0;
     MPI_Allreduce(&changes, &any, 1, MPI_INT, MPI_SUM, comm);
     settled_flag = any == 0;
-    // r -= C (lambda - lambda_0)
-    PetscScalar* a = nullptr;
-    CHK(VecGetArray(dl, &a));
-    for (int q = 0; q < m; ++q)
-      for (int j = 0; j < 3; ++j) a[3 * q + j] = lam[q][j] - P_[q].lam0[j];
-    CHK(VecRestoreArray(dl, &a));
-    CHK(MatMult(C, dl, fc));
-    CHK(VecAXPY(r, -1.0, fc));
+    system.subtract_coupling_force(pairs, lam, r);  // r -= C (lambda - lambda_0)
     double total = 0;
     MPI_Allreduce(&ss, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
     return total;
   }
 
   // ---- Newton system --------------------------------------------------------------------------
-  void fill_blocks() {
-    for (int q = 0; q < m; ++q) {
-      const PairData& d = P_[q];
-      const PairEquations& e = eq[q];
-      const PetscInt r0 = static_cast<PetscInt>(3 * (lam_begin + q));
-      for (int j = 0; j < 3; ++j) {
-        // dF_j/du2_k = sum_i Jg[j][i] R[k][i], dF_j/du1_k = -(same).
-        PetscInt cols[6];
-        double vals[6];
-        int n = 0;
-        double w[3];
-        for (int k = 0; k < 3; ++k) w[k] = e.Jg[3 * j] * d.R[3 * k] + e.Jg[3 * j + 1] * d.R[3 * k + 1] + e.Jg[3 * j + 2] * d.R[3 * k + 2];
-        for (int k = 0; k < 3; ++k)
-          if (!((d.fixed1 >> k) & 1)) cols[n] = static_cast<PetscInt>(3 * d.g1 + k), vals[n++] = -w[k];
-        for (int k = 0; k < 3; ++k)
-          if (!((d.fixed2 >> k) & 1)) cols[n] = static_cast<PetscInt>(3 * d.g2 + k), vals[n++] = w[k];
-        const PetscInt row = r0 + j;
-        CHK(MatSetValues(B, 1, &row, n, cols, vals, INSERT_VALUES));
-      }
-      const PetscInt rows[3] = {r0, r0 + 1, r0 + 2};
-      CHK(MatSetValues(D, 3, rows, 3, rows, e.Jl.data(), INSERT_VALUES));
-    }
-    CHK(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyBegin(D, MAT_FINAL_ASSEMBLY));
-    CHK(MatAssemblyEnd(D, MAT_FINAL_ASSEMBLY));
-  }
-
-  // Augmented Lagrangian for the field split: rows that are pure constraints (no multiplier
-  // coefficient) are added to the displacement rows with weight gamma / A_q, turning the twin
-  // constraints into springs of stiffness gamma k A_q in the (0,0) block: K_gamma = K + C W B.
-  void augment(Mat A, PetscScalar* rl, std::vector<double>& wdiag) {
-    wdiag.assign(3 * m, 0.0);
-    for (int q = 0; q < m; ++q)
-      for (int j = 0; j < 3; ++j) {
-        const auto& e = eq[q];
-        const bool constraint = e.Jl[3 * j] == 0 && e.Jl[3 * j + 1] == 0 && e.Jl[3 * j + 2] == 0 &&
-                                (e.Jg[3 * j] != 0 || e.Jg[3 * j + 1] != 0 || e.Jg[3 * j + 2] != 0);
-        if (constraint) wdiag[3 * q + j] = opt.augmentation / P_[q].area;
-      }
-    PetscScalar* a = nullptr;
-    CHK(VecGetArray(wr, &a));
-    for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i];
-    CHK(VecRestoreArray(wr, &a));
-    if (!WB) CHK(MatDuplicate(B, MAT_COPY_VALUES, &WB));
-    else CHK(MatCopy(B, WB, SAME_NONZERO_PATTERN));
-    CHK(MatDiagonalScale(WB, wr, nullptr));
-    if (!G) CHK(MatMatMult(C, WB, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G));
-    else CHK(MatMatMult(C, WB, MAT_REUSE_MATRIX, PETSC_DEFAULT, &G));
-    if (!Kg) {
-      CHK(MatDuplicate(A, MAT_COPY_VALUES, &Kg));
-      CHK(MatAXPY(Kg, 1.0, G, DIFFERENT_NONZERO_PATTERN));
-      MatNullSpace nsp = nullptr;
-      CHK(MatGetNearNullSpace(A, &nsp));
-      if (nsp) CHK(MatSetNearNullSpace(Kg, nsp));
-    } else {
-      CHK(MatCopy(A, Kg, SUBSET_NONZERO_PATTERN));
-      CHK(MatAXPY(Kg, 1.0, G, SUBSET_NONZERO_PATTERN));
-    }
-    // Right-hand side: r_u += C W r_lambda.
-    CHK(VecGetArray(wr, &a));
-    for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i] * rl[i];
-    CHK(VecRestoreArray(wr, &a));
-  }
-
   mech::CouplingSolve solve(Mat A, Vec r, Vec du, double rtol) {
     const auto t0 = std::chrono::steady_clock::now();
-    fill_blocks();
-    const PetscInt n3 = 3 * ctx.n_owned;
-    // Right-hand side [r; -F].
-    PetscScalar* b = nullptr;
-    const PetscScalar* ra = nullptr;
-    CHK(VecGetArray(rhs, &b));
-    CHK(VecGetArrayRead(r, &ra));
-    std::copy(ra, ra + n3, b);
-    CHK(VecRestoreArrayRead(r, &ra));
-    for (int q = 0; q < m; ++q)
-      for (int j = 0; j < 3; ++j) b[n3 + 3 * q + j] = -eq[q].F[j];
-    Mat op = nullptr;
-    if (solver == SaddleSolver::FieldSplit) {
-      std::vector<double> wdiag;
-      augment(A, b + n3, wdiag);
-      CHK(VecRestoreArray(rhs, &b));
-      CHK(MatMult(C, wr, fc));  // C W r_lambda
-      CHK(VecGetArray(rhs, &b));
-      const PetscScalar* f = nullptr;
-      CHK(VecGetArrayRead(fc, &f));
-      for (PetscInt i = 0; i < n3; ++i)
-        if (f[i] != 0) b[i] += f[i];
-      CHK(VecRestoreArrayRead(fc, &f));
-    }
-    CHK(VecRestoreArray(rhs, &b));
-    if (!J || A != A_seen) {
-      if (J) CHK(MatDestroy(&J));
-      Mat blocks[4] = {solver == SaddleSolver::FieldSplit ? Kg : A, C, B, D};
-      CHK(MatCreateNest(comm, 2, nullptr, 2, nullptr, blocks, &J));
-      A_seen = A;
-      if (solver == SaddleSolver::FieldSplit) {
-        IS isr[2];
-        CHK(MatNestGetISs(J, isr, nullptr));
-        // The rigid-body modes reach the displacement block's multigrid through its index set
-        // (GAMG's aggregates, BoomerAMG's interpolation vectors).
-        MatNullSpace nsp = nullptr;
-        CHK(MatGetNearNullSpace(A, &nsp));
-        if (nsp) CHK(PetscObjectCompose(reinterpret_cast<PetscObject>(isr[0]), "nearnullspace", reinterpret_cast<PetscObject>(nsp)));
-        PC pc;
-        CHK(KSPGetPC(ksp, &pc));
-        CHK(PCFieldSplitSetIS(pc, "u", isr[0]));
-        CHK(PCFieldSplitSetIS(pc, "lambda", isr[1]));
-      }
-    } else {
-      CHK(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-      CHK(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-    }
-    if (solver == SaddleSolver::Mumps) {
-      CHK(MatConvert(J, MATAIJ, Jaij ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &Jaij));
-      op = Jaij;
-    } else {
-      op = J;
-    }
-    CHK(KSPSetOperators(ksp, op, op));
-    if (stats.solves == 0) CHK(KSPSetFromOptions(ksp));
-    PetscReal old_rtol, abstol, dtol;
-    PetscInt maxit;
-    CHK(KSPGetTolerances(ksp, &old_rtol, &abstol, &dtol, &maxit));
-    CHK(KSPSetTolerances(ksp, std::min(rtol, 1e-3), abstol, dtol, maxit));
-    // The field split keeps its multigrid hierarchy while the iteration counts stay close to those
-    // of a fresh setup (the tangent and the active set change little from one iteration, or one
-    // step, to the next); a stale one that fails is rebuilt at once.
-    const bool iterative = solver == SaddleSolver::FieldSplit;
-    bool reuse = iterative && opt.reuse_preconditioner && pc_built && last_its <= std::max(2 * baseline_its, baseline_its + 10);
-    PetscInt its = 0;
-    KSPConvergedReason reason;
-    for (;;) {
-      CHK(KSPSetReusePreconditioner(ksp, reuse ? PETSC_TRUE : PETSC_FALSE));
-      CHK(KSPSolve(ksp, rhs, sol));
-      CHK(KSPGetIterationNumber(ksp, &its));
-      CHK(KSPGetConvergedReason(ksp, &reason));
-      stats.linear_iterations += its;
-      if (!reuse || reason >= 0) break;
-      reuse = false;
-    }
-    if (!reuse) {
-      ++stats.preconditioner_setups;
-      baseline_its = static_cast<int>(its);
-    }
-    pc_built = true;
-    last_its = static_cast<int>(its);
-    mech::CouplingSolve out;
-    out.iterations = static_cast<int>(its);
-    if (reason < 0) {
-      out.ok = false;
-      out.failure = fmt::format("the saddle-point solver ({}) failed: {} after {} iterations", solver_name(),
-                                KSPConvergedReasons[reason], its);
-    }
-    // du (zero on prescribed components) and lambda += dlambda.
-    const PetscScalar* x = nullptr;
-    PetscScalar* d = nullptr;
-    CHK(VecGetArrayRead(sol, &x));
-    CHK(VecGetArray(du, &d));
-    for (int a = 0; a < ctx.n_owned; ++a)
-      for (int k = 0; k < 3; ++k) d[3 * a + k] = ((owned_fixed[a] >> k) & 1) ? 0.0 : x[3 * a + k];
-    CHK(VecRestoreArray(du, &d));
-    for (int q = 0; q < m; ++q)
-      for (int j = 0; j < 3; ++j) lam[q][j] += x[n3 + 3 * q + j];
-    CHK(VecRestoreArrayRead(sol, &x));
+    system.fill(pairs, eq);
+    const mech::CouplingSolve out = linear.solve(A, r, du, rtol, pairs, system, eq, owned_fixed, lam, stats);
     ++stats.solves;
     stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
   }
-
-  const char* solver_name() const { return solver == SaddleSolver::Mumps ? "MUMPS" : "field split"; }
 
   // ---- messages -------------------------------------------------------------------------------
   // Lists pairs flagged on any rank: "fault 'F': nodes 12/40012 at (x, y, z), ...".
   std::string describe(const std::vector<int>& mine, const std::string& what) {
     std::string local;
     for (int q : mine) {
-      const PairData& d = P_[q];
+      const PairData& d = pairs.pairs[q];
       local += fmt::format("{}\t{}/{} at ({:.1f}, {:.1f}, {:.1f})\n", d.fault, d.tag1, d.tag2, d.x[0], d.x[1], d.x[2]);
     }
     int n = static_cast<int>(local.size());
@@ -592,16 +216,9 @@ void FaultContact::setup(const mech::CouplingContext& ctx) { impl_->setup(ctx); 
 
 void FaultContact::set_pressure_change(const std::vector<double>& dp_pairs) {
   Impl& s = *impl_;
-  std::vector<double> sorted;
-  if (s.rank == 0) {
-    if (dp_pairs.size() != s.order.size()) throw std::logic_error("FaultContact::set_pressure_change: wrong size");
-    sorted.resize(s.order.size());
-    for (std::size_t i = 0; i < s.order.size(); ++i) sorted[i] = dp_pairs[s.order[i]];
-  }
-  std::vector<int> displs(s.size, 0);
-  for (int r = 1; r < s.size; ++r) displs[r] = displs[r - 1] + s.pairs_of_rank[r - 1];
-  MPI_Scatterv(sorted.data(), s.pairs_of_rank.data(), displs.data(), MPI_DOUBLE, s.dp_target.data(), s.m, MPI_DOUBLE, 0,
-               s.comm);
+  if (s.rank == 0 && dp_pairs.size() != s.pairs.order.size())
+    throw std::logic_error("FaultContact::set_pressure_change: wrong size");
+  s.pairs.scatter(dp_pairs, 1, s.dp_target.data());
 }
 
 PairResults FaultContact::gather() const {
@@ -609,26 +226,14 @@ PairResults FaultContact::gather() const {
   std::vector<double> lam(3 * s.m), g(3 * s.m), pf(s.m), st(s.m);
   for (int q = 0; q < s.m; ++q) {
     for (int j = 0; j < 3; ++j) lam[3 * q + j] = s.lam_c[q][j], g[3 * q + j] = s.gc[q][j];
-    pf[q] = s.P_[q].p0 + s.dp_c[q];
+    pf[q] = s.pairs.pairs[q].p0 + s.dp_c[q];
     st[q] = static_cast<double>(static_cast<int>(s.st_c[q]));
   }
-  auto gatherv = [&](const std::vector<double>& v, int k) {
-    std::vector<int> counts(s.size), displs(s.size, 0);
-    for (int r = 0; r < s.size; ++r) counts[r] = k * s.pairs_of_rank[r];
-    for (int r = 1; r < s.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-    std::vector<double> all(s.rank == 0 ? static_cast<std::size_t>(k) * s.M : 0);
-    MPI_Gatherv(v.data(), k * s.m, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, s.comm);
-    std::vector<double> out(all.size());
-    if (s.rank == 0)
-      for (std::size_t i = 0; i < s.order.size(); ++i)
-        for (int c = 0; c < k; ++c) out[static_cast<std::size_t>(k) * s.order[i] + c] = all[static_cast<std::size_t>(k) * i + c];
-    return out;
-  };
   PairResults out;
-  out.lambda = gatherv(lam, 3);
-  out.g = gatherv(g, 3);
-  out.p_f = gatherv(pf, 1);
-  const auto sv = gatherv(st, 1);
+  out.lambda = s.pairs.gather(lam, 3);
+  out.g = s.pairs.gather(g, 3);
+  out.p_f = s.pairs.gather(pf, 1);
+  const auto sv = s.pairs.gather(st, 1);
   out.state.resize(sv.size());
   for (std::size_t i = 0; i < sv.size(); ++i) out.state[i] = static_cast<std::uint8_t>(sv[i]);
   return out;
@@ -662,12 +267,12 @@ const ContactStats& FaultContact::stats() const { return impl_->stats; }
 
 std::string FaultContact::description() const {
   const Impl& s = *impl_;
-  if (s.solver == SaddleSolver::Mumps) return fmt::format("{} node pairs, saddle point by MUMPS (LU)", s.M);
+  if (s.linear.kind() == SaddleSolver::Mumps) return fmt::format("{} node pairs, saddle point by MUMPS (LU)", s.pairs.M);
   return fmt::format("{} node pairs, saddle point by FGMRES + Schur field split ({} on the displacement block, augmentation {:g})",
-                     s.M, s.opt.amg == "hypre" ? "BoomerAMG" : "GAMG", s.opt.augmentation);
+                     s.pairs.M, s.opt.amg == "hypre" ? "BoomerAMG" : "GAMG", s.opt.augmentation);
 }
 
-std::size_t FaultContact::global_pairs() const { return static_cast<std::size_t>(impl_->M); }
+std::size_t FaultContact::global_pairs() const { return static_cast<std::size_t>(impl_->pairs.M); }
 
 void FaultContact::begin_step() {
   Impl& s = *impl_;

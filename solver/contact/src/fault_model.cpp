@@ -148,7 +148,7 @@ ConstraintFrame constraint_frame(const Point3& n, std::uint8_t fixed1, std::uint
   // direction of the fault.
   if (normal_active) normal = m;
   for (int c = 0; c < 3; ++c) f.R[3 * c] = ta[c], f.R[3 * c + 1] = tb[c], f.R[3 * c + 2] = normal[c];
-  f.active = static_cast<std::uint8_t>((ta_active ? 1 : 0) | (tb_active ? 2 : 0) | (normal_active ? 4 : 0));
+  f.active = static_cast<std::uint8_t>((ta_active ? 1 << kStrike : 0) | (tb_active ? 1 << kDip : 0) | (normal_active ? 1 << kNormal : 0));
   return f;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ugs/contact/dof_mask.hpp"
+
 namespace ugs::contact {
 
 const char* pair_state_name(PairState s) {
@@ -25,8 +27,8 @@ PairEquations pair_equations(const PairLaw& L, const std::array<double, 3>& lam,
   };
   // A held normal (a pair whose free directions lie in the fault plane, constraint_frame): the
   // normal traction keeps its initial value and the shear obeys friction under it.
-  const bool normal = (L.active & 4) != 0;
-  const bool act[2] = {(L.active & 1) != 0, (L.active & 2) != 0};
+  const bool normal = normal_active(L.active);
+  const bool act[2] = {is_active(L.active, kStrike), is_active(L.active, kDip)};
   const double sn = lam[2] + p_f;
   // Hysteresis band: round-off of the stress scale of the pair.
   const double band = 1e-9 * (std::abs(lam[0]) + std::abs(lam[1]) + std::abs(lam[2]) + std::abs(p_f) + L.cohesion + 1.0);

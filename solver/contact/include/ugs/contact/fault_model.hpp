@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "ugs/contact/dof_mask.hpp"
 #include "ugs/fem/voigt.hpp"
 #include "ugs/formats/case_file.hpp"
 #include "ugs/formats/mesh.hpp"
@@ -60,7 +61,7 @@ struct NodePair {
 
   // The pair obeys the friction law with its normal and at least one shear direction free: it counts
   // in the fault statistics (max chi, slipping and open pairs) and the scenario search.
-  bool frictional() const { return (active & 4) && (active & 3); }
+  bool frictional() const { return normal_active(active) && (is_active(active, kStrike) || is_active(active, kDip)); }
 };
 
 // The output surface: one triangle per interface element (its side-1 face), one node per node pair

@@ -1,0 +1,231 @@
+#include "saddle_solver.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "petsc_call.hpp"
+#include "ugs/contact/dof_mask.hpp"
+
+#define CHK UGS_CONTACT_PETSC
+
+namespace ugs::contact::detail {
+namespace {
+
+bool has_option(const char* name) {
+  PetscBool has = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, name, &has);
+  return has == PETSC_TRUE;
+}
+
+void default_option(const char* name, const char* value) {
+  if (!has_option(name)) CHK(PetscOptionsSetValue(nullptr, name, value));
+}
+
+}  // namespace
+
+SaddlePointSolver::~SaddlePointSolver() {
+  if (ksp_) KSPDestroy(&ksp_);
+  for (Mat* a : {&WB_, &G_, &Kg_, &J_, &Jaij_})
+    if (*a) MatDestroy(a);
+  for (Vec* v : {&rhs_, &sol_, &wr_})
+    if (*v) VecDestroy(v);
+}
+
+void SaddlePointSolver::setup(const mech::CouplingContext& c, const PairDistribution& pd, const SaddleSystem& sys,
+                              ContactOptions& opt) {
+  comm_ = c.comm;
+  n_owned_ = c.n_owned;
+  opt_ = &opt;
+  const PetscInt n3 = 3 * c.n_owned, m3 = 3 * pd.m;
+  CHK(VecCreateMPI(comm_, n3 + m3, PETSC_DETERMINE, &rhs_));
+  CHK(VecDuplicate(rhs_, &sol_));
+  CHK(VecDuplicate(sys.dl, &wr_));
+
+  // The linear solver (-contact_augmentation overrides the augmentation of the field split).
+  {
+    PetscReal g = opt.augmentation;
+    PetscBool set = PETSC_FALSE;
+    CHK(PetscOptionsGetReal(nullptr, nullptr, "-contact_augmentation", &g, &set));
+    if (set) opt.augmentation = g;
+  }
+  const double unknowns = 3.0 * static_cast<double>(c.n_global_nodes) + 3.0 * static_cast<double>(pd.M);
+  kind_ = opt.solver;
+  if (kind_ == SaddleSolver::Auto) kind_ = unknowns <= static_cast<double>(opt.direct_limit) ? SaddleSolver::Mumps : SaddleSolver::FieldSplit;
+  CHK(KSPCreate(comm_, &ksp_));
+  CHK(KSPSetOptionsPrefix(ksp_, "contact_"));
+  PC pc;
+  CHK(KSPGetPC(ksp_, &pc));
+  if (kind_ == SaddleSolver::Mumps) {
+    CHK(KSPSetType(ksp_, KSPPREONLY));
+    CHK(PCSetType(pc, PCLU));
+    CHK(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    // Extra workspace: pivoting on the multiplier rows fills more than MUMPS' estimate.
+    default_option("-contact_mat_mumps_icntl_14", "60");
+  } else {
+    CHK(KSPSetType(ksp_, KSPFGMRES));
+    CHK(KSPGMRESSetRestart(ksp_, 200));
+    CHK(PCSetType(pc, PCFIELDSPLIT));
+    CHK(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
+    // Upper block-triangular: one multigrid cycle per iteration (full: two, for ~20 % fewer iterations).
+    CHK(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
+    CHK(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, nullptr));
+    default_option("-contact_fieldsplit_u_ksp_type", "preonly");
+    default_option("-contact_fieldsplit_u_pc_type", opt.amg == "hypre" ? "hypre" : "gamg");
+    if (opt.amg == "hypre") {
+      default_option("-contact_fieldsplit_u_pc_hypre_type", "boomeramg");
+      default_option("-contact_fieldsplit_u_pc_hypre_boomeramg_nodal_coarsen", "6");
+      // Variant 3 (as the continuous solver uses) crashes inside BoomerAMG on this block
+      // (hypre 2.26, hypre_BoomerAMG_LNExpandInterp); variant 2 works.
+      default_option("-contact_fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant", "2");
+      default_option("-contact_fieldsplit_u_pc_hypre_boomeramg_strong_threshold", "0.5");
+    }
+    default_option("-contact_fieldsplit_lambda_ksp_type", "preonly");
+    default_option("-contact_fieldsplit_lambda_pc_type", "bjacobi");
+  }
+  CHK(KSPSetTolerances(ksp_, 1e-9, 1e-300, PETSC_DEFAULT, 2000));
+}
+
+// Augmented Lagrangian for the field split: rows that are pure constraints (no multiplier
+// coefficient) are added to the displacement rows with weight gamma / A_q, turning the twin
+// constraints into springs of stiffness gamma k A_q in the (0,0) block: K_gamma = K + C W B.
+void SaddlePointSolver::augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, const std::vector<PairEquations>& eq,
+                                PetscScalar* rl) {
+  const int m = pd.m;
+  std::vector<double> wdiag(3 * m, 0.0);
+  for (int q = 0; q < m; ++q)
+    for (int j = 0; j < 3; ++j) {
+      const auto& e = eq[q];
+      const bool constraint = e.Jl[3 * j] == 0 && e.Jl[3 * j + 1] == 0 && e.Jl[3 * j + 2] == 0 &&
+                              (e.Jg[3 * j] != 0 || e.Jg[3 * j + 1] != 0 || e.Jg[3 * j + 2] != 0);
+      if (constraint) wdiag[3 * q + j] = opt_->augmentation / pd.pairs[q].area;
+    }
+  PetscScalar* a = nullptr;
+  CHK(VecGetArray(wr_, &a));
+  for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i];
+  CHK(VecRestoreArray(wr_, &a));
+  if (!WB_) CHK(MatDuplicate(sys.B, MAT_COPY_VALUES, &WB_));
+  else CHK(MatCopy(sys.B, WB_, SAME_NONZERO_PATTERN));
+  CHK(MatDiagonalScale(WB_, wr_, nullptr));
+  if (!G_) CHK(MatMatMult(sys.C, WB_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G_));
+  else CHK(MatMatMult(sys.C, WB_, MAT_REUSE_MATRIX, PETSC_DEFAULT, &G_));
+  if (!Kg_) {
+    CHK(MatDuplicate(A, MAT_COPY_VALUES, &Kg_));
+    CHK(MatAXPY(Kg_, 1.0, G_, DIFFERENT_NONZERO_PATTERN));
+    MatNullSpace nsp = nullptr;
+    CHK(MatGetNearNullSpace(A, &nsp));
+    if (nsp) CHK(MatSetNearNullSpace(Kg_, nsp));
+  } else {
+    CHK(MatCopy(A, Kg_, SUBSET_NONZERO_PATTERN));
+    CHK(MatAXPY(Kg_, 1.0, G_, SUBSET_NONZERO_PATTERN));
+  }
+  // Right-hand side: r_u += C W r_lambda.
+  CHK(VecGetArray(wr_, &a));
+  for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i] * rl[i];
+  CHK(VecRestoreArray(wr_, &a));
+}
+
+mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, const PairDistribution& pd, SaddleSystem& sys,
+                                             const std::vector<PairEquations>& eq, const std::vector<std::uint8_t>& owned_fixed,
+                                             std::vector<std::array<double, 3>>& lam, ContactStats& stats) {
+  const int m = pd.m;
+  const PetscInt n3 = 3 * n_owned_;
+  // Right-hand side [r; -F].
+  PetscScalar* b = nullptr;
+  const PetscScalar* ra = nullptr;
+  CHK(VecGetArray(rhs_, &b));
+  CHK(VecGetArrayRead(r, &ra));
+  std::copy(ra, ra + n3, b);
+  CHK(VecRestoreArrayRead(r, &ra));
+  for (int q = 0; q < m; ++q)
+    for (int j = 0; j < 3; ++j) b[n3 + 3 * q + j] = -eq[q].F[j];
+  Mat op = nullptr;
+  if (kind_ == SaddleSolver::FieldSplit) {
+    augment(A, pd, sys, eq, b + n3);
+    CHK(VecRestoreArray(rhs_, &b));
+    CHK(MatMult(sys.C, wr_, sys.fc));  // C W r_lambda
+    CHK(VecGetArray(rhs_, &b));
+    const PetscScalar* f = nullptr;
+    CHK(VecGetArrayRead(sys.fc, &f));
+    for (PetscInt i = 0; i < n3; ++i)
+      if (f[i] != 0) b[i] += f[i];
+    CHK(VecRestoreArrayRead(sys.fc, &f));
+  }
+  CHK(VecRestoreArray(rhs_, &b));
+  if (!J_ || A != A_seen_) {
+    if (J_) CHK(MatDestroy(&J_));
+    Mat blocks[4] = {kind_ == SaddleSolver::FieldSplit ? Kg_ : A, sys.C, sys.B, sys.D};
+    CHK(MatCreateNest(comm_, 2, nullptr, 2, nullptr, blocks, &J_));
+    A_seen_ = A;
+    if (kind_ == SaddleSolver::FieldSplit) {
+      IS isr[2];
+      CHK(MatNestGetISs(J_, isr, nullptr));
+      // The rigid-body modes reach the displacement block's multigrid through its index set
+      // (GAMG's aggregates, BoomerAMG's interpolation vectors).
+      MatNullSpace nsp = nullptr;
+      CHK(MatGetNearNullSpace(A, &nsp));
+      if (nsp) CHK(PetscObjectCompose(reinterpret_cast<PetscObject>(isr[0]), "nearnullspace", reinterpret_cast<PetscObject>(nsp)));
+      PC pc;
+      CHK(KSPGetPC(ksp_, &pc));
+      CHK(PCFieldSplitSetIS(pc, "u", isr[0]));
+      CHK(PCFieldSplitSetIS(pc, "lambda", isr[1]));
+    }
+  } else {
+    CHK(MatAssemblyBegin(J_, MAT_FINAL_ASSEMBLY));
+    CHK(MatAssemblyEnd(J_, MAT_FINAL_ASSEMBLY));
+  }
+  if (kind_ == SaddleSolver::Mumps) {
+    CHK(MatConvert(J_, MATAIJ, Jaij_ ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX, &Jaij_));
+    op = Jaij_;
+  } else {
+    op = J_;
+  }
+  CHK(KSPSetOperators(ksp_, op, op));
+  if (stats.solves == 0) CHK(KSPSetFromOptions(ksp_));
+  PetscReal old_rtol, abstol, dtol;
+  PetscInt maxit;
+  CHK(KSPGetTolerances(ksp_, &old_rtol, &abstol, &dtol, &maxit));
+  CHK(KSPSetTolerances(ksp_, std::min(rtol, 1e-3), abstol, dtol, maxit));
+  // The field split keeps its multigrid hierarchy while the iteration counts stay close to those
+  // of a fresh setup (the tangent and the active set change little from one iteration, or one
+  // step, to the next); a stale one that fails is rebuilt at once.
+  const bool iterative = kind_ == SaddleSolver::FieldSplit;
+  bool reuse = iterative && opt_->reuse_preconditioner && pc_built_ && last_its_ <= std::max(2 * baseline_its_, baseline_its_ + 10);
+  PetscInt its = 0;
+  KSPConvergedReason reason;
+  for (;;) {
+    CHK(KSPSetReusePreconditioner(ksp_, reuse ? PETSC_TRUE : PETSC_FALSE));
+    CHK(KSPSolve(ksp_, rhs_, sol_));
+    CHK(KSPGetIterationNumber(ksp_, &its));
+    CHK(KSPGetConvergedReason(ksp_, &reason));
+    stats.linear_iterations += its;
+    if (!reuse || reason >= 0) break;
+    reuse = false;
+  }
+  if (!reuse) {
+    ++stats.preconditioner_setups;
+    baseline_its_ = static_cast<int>(its);
+  }
+  pc_built_ = true;
+  last_its_ = static_cast<int>(its);
+  mech::CouplingSolve out;
+  out.iterations = static_cast<int>(its);
+  if (reason < 0) {
+    out.ok = false;
+    out.failure = fmt::format("the saddle-point solver ({}) failed: {} after {} iterations", name(), KSPConvergedReasons[reason], its);
+  }
+  // du (zero on prescribed components) and lambda += dlambda.
+  const PetscScalar* x = nullptr;
+  PetscScalar* d = nullptr;
+  CHK(VecGetArrayRead(sol_, &x));
+  CHK(VecGetArray(du, &d));
+  for (int a = 0; a < n_owned_; ++a)
+    for (int k = 0; k < 3; ++k) d[3 * a + k] = is_fixed(owned_fixed[a], k) ? 0.0 : x[3 * a + k];
+  CHK(VecRestoreArray(du, &d));
+  for (int q = 0; q < m; ++q)
+    for (int j = 0; j < 3; ++j) lam[q][j] += x[n3 + 3 * q + j];
+  CHK(VecRestoreArrayRead(sol_, &x));
+  return out;
+}
+
+}  // namespace ugs::contact::detail
