@@ -154,8 +154,8 @@ ConstraintFrame constraint_frame(const Point3& n, std::uint8_t fixed1, std::uint
 
 InitialFaultState geostatic_fault_state(const mech::InitialState& init) {
   InitialFaultState s;
-  s.total_stress = [init](const Point3& x, double biot) {
-    fem::Vec6 sig = init.effective_stress(x[2], biot);
+  s.total_stress = [init](const Point3& x, double biot, const std::array<double, 2>& k) {
+    fem::Vec6 sig = init.effective_stress(x[2], biot, k);
     const double p = init.pore_pressure(x[2]);
     for (int k = 0; k < 3; ++k) sig[k] -= biot * p;
     return sig;
@@ -297,6 +297,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
   std::map<PairKey, std::size_t> pair_of;
   std::vector<V3> nsum;
   std::vector<double> ksum, bsum;
+  std::vector<std::array<double, 2>> rsum;  // stress ratios (k_Hmax, k_hmin) of side 1, area-weighted
   std::vector<std::map<std::uint32_t, char>> tips(fm.faults.size());
   for (const auto& el : elems) {
     double k1, k2, b1, b2;
@@ -324,6 +325,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
         nsum.push_back({0, 0, 0});
         ksum.push_back(0);
         bsum.push_back(0);
+        rsum.push_back({0, 0});
       }
       const std::size_t q = it->second;
       const double a = el.area / 3;
@@ -331,6 +333,8 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
       for (int d = 0; d < 3; ++d) nsum[q][d] += a * el.normal[d];
       ksum[q] += a * 0.5 * (k1 + k2);
       bsum[q] += a * b1;
+      const auto& r1 = model.material_k[model.tet_material[el.tet1]];
+      rsum[q][0] += a * r1[0], rsum[q][1] += a * r1[1];
     }
   }
   for (std::size_t fi = 0; fi < fm.faults.size(); ++fi) fm.faults[fi].tip_nodes = tips[fi].size();
@@ -349,7 +353,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
     p.active = cf.active;
     p.k = ksum[q] / p.area;
     const double biot = bsum[q] / p.area;
-    const fem::Vec6 s = init.total_stress(p.x, biot);
+    const fem::Vec6 s = init.total_stress(p.x, biot, {rsum[q][0] / p.area, rsum[q][1] / p.area});
     // Traction t = sigma n (thesis Voigt order xx yy zz yz xz xy), in the pair's frame. A held
     // tangent slot of a reduced frame is a prescribed direction: its traction is the support's
     // reaction, not the fault's, and is reported as 0 (it enters no equation but its own hold).

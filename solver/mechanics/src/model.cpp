@@ -51,50 +51,6 @@ std::string group_list(const Mesh& mesh) {
   return s.empty() ? "none" : s;
 }
 
-// The initial fault tractions (ugs_contact's geostatic_fault_state) take the [initial_stress] ratios:
-// a material with other ratios beside a fault would give its pairs tractions of another tensor than
-// its elements. Refused until the fault model takes the tensor of the elements beside each pair.
-void refuse_own_ratios_beside_faults(const Mesh& mesh, const CaseFile& cs, const Model& model) {
-  const std::array<double, 2> global{model.initial.k_Hmax, model.initial.k_hmin};
-  bool any = false;
-  for (const auto& k : model.material_k) any = any || k != global;
-  if (!any || mesh.count(ElementType::Prism) == 0) return;
-  std::map<std::array<std::uint32_t, 3>, std::string> fault_face;  // sorted face -> fault group
-  for (const auto& b : mesh.blocks) {
-    if (b.type != ElementType::Prism) continue;
-    std::string name = "(no group)";
-    if (const Entity* e = mesh.find_entity(b.entity_dim, b.entity_tag))
-      for (int p : e->physicals)
-        if (const PhysicalGroup* g = mesh.find_physical_tag(b.entity_dim, p); g && g->name.rfind("fault:", 0) == 0) name = g->name;
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      const auto e = b.element(i);
-      for (int side = 0; side < 2; ++side) {
-        std::array<std::uint32_t, 3> f{e[3 * side], e[3 * side + 1], e[3 * side + 2]};
-        std::sort(f.begin(), f.end());
-        fault_face.emplace(f, name);
-      }
-    }
-  }
-  static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  for (std::size_t t = 0; t < model.tets.size(); ++t) {
-    const int mat = model.tet_material[t];
-    if (model.material_k[mat] == global) continue;
-    for (const auto& fi : kFaces) {
-      std::array<std::uint32_t, 3> f{model.tets[t][fi[0]], model.tets[t][fi[1]], model.tets[t][fi[2]]};
-      std::sort(f.begin(), f.end());
-      if (auto it = fault_face.find(f); it != fault_face.end()) {
-        const MaterialSpec& spec = *cs.material(model.materials[mat].name);
-        throw InputError(spec.where, fmt::format("material '{}' sets its own stress ratios (k_Hmax {}, k_hmin {}; [initial_stress]: "
-                                                 "{}, {}) and lies beside {}: the initial fault tractions take the "
-                                                 "[initial_stress] ratios only (expected no own ratios on a faulted mesh's "
-                                                 "materials beside a fault)",
-                                                 spec.name, model.material_k[mat][0], model.material_k[mat][1], global[0],
-                                                 global[1], it->second));
-      }
-    }
-  }
-}
-
 }  // namespace
 
 fem::Vec6 InitialState::effective_stress(double z, double biot) const { return effective_stress(z, biot, {k_Hmax, k_hmin}); }
@@ -261,7 +217,6 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
     const MaterialSpec& spec = *cs.material(m.name);
     model.material_k.push_back({spec.k_Hmax.value_or(is.kH()), spec.k_hmin.value_or(is.kh())});
   }
-  if (allow_interface_elements) refuse_own_ratios_beside_faults(mesh, cs, model);
   model.traction_force = boundary_traction_forces(mesh, cs, model);
   return model;
 }

@@ -84,9 +84,10 @@ struct FaultModel {
 };
 
 // Initial state of the faults: total stress (thesis Voigt order, Pa, tension positive) and fluid
-// pressure at a point; `biot` is the Biot coefficient of the rock on side 1.
+// pressure at a point; `biot` and `k` (the effective stress ratios k_Hmax, k_hmin) are those of the
+// rock on side 1 (the hanging wall), area-weighted over the pair's elements where it changes.
 struct InitialFaultState {
-  std::function<fem::Vec6(const Point3& x, double biot)> total_stress;
+  std::function<fem::Vec6(const Point3& x, double biot, const std::array<double, 2>& k)> total_stress;
   std::function<double(const Point3& x)> pressure;
 };
 
