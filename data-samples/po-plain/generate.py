@@ -153,7 +153,8 @@ def write_vectors(tmp, field, variant, domain, size_far, size_res, seed):
         if g.GetGeometryType() != ogr.wkbPolygon:
             raise RuntimeError(f"aquifer of {u} is not a single polygon")
         feats.append(({"name": u, "unit": u, "fault_z_m": V.AQUIFER_Z[u],
-                       "note": "between the regional faults at fault_z_m, within 9 km of the crest along the axis"
+                       "note": "between its hydraulic limits across the axis at fault_z_m (the regional faults run"
+                       f" at least {V.FAULT_CLEARANCE:.0f} m outside), within 9 km of the crest along the axis"
                        + ("; ends at the pinch-out of Pool C" if u == "Pool C" else "")}, g))
     IO.write_geojson(os.path.join(tmp, "aquifers.geojson"), "aquifers", epsg, ogr.wkbPolygon,
                      [("name", "str"), ("unit", "str"), ("fault_z_m", "real"), ("note", "str")], feats)
@@ -163,6 +164,12 @@ def write_vectors(tmp, field, variant, domain, size_far, size_res, seed):
         for f2, l2 in faults[i + 1:]:
             if V.min_separation(f1, l1, f2, l2) < 300.0:
                 raise RuntimeError(f"faults {f1['name']} and {f2['name']} come closer than 300 m")
+    for f, line in V.regional_fault_lines():   # outside the depleted volume (thesis 4.3.4)
+        for u, g in aquifers.items():
+            d = V.aquifer_clearance(f, line, g)
+            if d < V.FAULT_CLEARANCE:
+                raise RuntimeError(f"fault {f['name']} comes {d:.0f} m from the {u} aquifer over the sands' "
+                                   f"depths (at least {V.FAULT_CLEARANCE:.0f} m)")
     feats = []
     for f, line in faults:
         g = clip(V.line_geom(line), inner)
