@@ -21,9 +21,11 @@ import po_field as F
 # lines "v" at AQUIFER_Z, which stay where they were), so that every fault surface keeps at least
 # FAULT_CLEARANCE from every aquifer over the sands' depths (generate.py checks it).
 # --------------------------------------------------------------------------------------------------
-FAULT_OFFSET_V = {"overthrust_north": 1500.0, "backthrust_south": -1200.0}
-FAULT_CLEARANCE = 800.0                   # m, horizontal, fault surface to aquifer polygon
+FAULT_OFFSET_V = {"overthrust_north": 2500.0, "backthrust_south": -2200.0}
+FAULT_CLEARANCE = 1800.0                  # m, horizontal, fault surface to aquifer polygon
 SANDS_Z = (-1400.0, -1850.0)              # elevations of the pools' sands in the aquifers (top, bottom)
+REGIONAL_TRACE_Z = -1500.0                # faults.geojson gives the regional traces at the pools' level
+                                          # (trace_z_m), which keeps them inside the small twin's domain
 
 REGIONAL_FAULTS = [
     {
@@ -36,7 +38,7 @@ REGIONAL_FAULTS = [
         "name": "backthrust_south", "kind": "regional_backthrust",
         "u": [-14000.0, -7000.0, 0.0, 7000.0, 14000.0], "v": [-5100.0, -5200.0, -5300.0, -5100.0, -5000.0],
         "top_m": -500.0, "bottom_m": -5000.0, "dip_deg": 60.0, "dip_dir_deg": F.AXIS_BEARING - 90.0,
-        "note": "back-thrust verging S; dips NNE, about 3.4 km clear of the overthrust at -5,000 m",
+        "note": "back-thrust verging S; dips NNE, about 5.4 km clear of the overthrust at -5,000 m",
     },
 ]
 
@@ -160,6 +162,14 @@ def min_separation(f1, line1, f2, line2, n=20):
         return math.inf
     return min(line_geom(fault_line_at(f1, line1, z)).Distance(line_geom(fault_line_at(f2, line2, z)))
                for z in np.linspace(lo, hi, n))
+
+
+def fault_footprint(f, line, margin=250.0):
+    """Plan projection of a fault surface (its trace at top_m, then at bottom_m reversed), widened by
+    margin: the band ugs-mesh2d refines so that the faulted model meshes the fault, not just its trace."""
+    ring = fault_line_at(f, line, f["top_m"]) + fault_line_at(f, line, f["bottom_m"])[::-1]
+    ring.append(ring[0])
+    return polygon_geom(ring).Buffer(margin, 4)
 
 
 def aquifer_clearance(f, line, geom, n=10):
