@@ -5,7 +5,7 @@
 # the maximum chi per fault over the demo's fault dates per resolution, the change between the two
 # finest (target < 0.05 per fault), the maximum safe scale of the 2025 swing and the wall times.
 #
-#   sh bench/fault-convergence/run.sh BUILD_DIR [WORK_DIR] [H1 H2 H3]    (default 3000 1500 750 m)
+#   sh bench/fault-convergence/run.sh BUILD_DIR [WORK_DIR] [H1 H2 H3]    (default 2000 1400 1000 m)
 #
 # Each resolution runs in WORK_DIR/h<H> (default BUILD_DIR/bench-fault-convergence); a finished one
 # (faulted.h5 newer than its inputs) is not rerun. FAULT_OPTS picks the saddle-point solver
@@ -16,7 +16,7 @@ set -eu
 B=$(cd "${1:?usage: run.sh BUILD_DIR [WORK_DIR] [H1 H2 H3]}" && pwd)
 W=${2:-$B/bench-fault-convergence}
 shift $(( $# < 2 ? $# : 2 ))
-[ $# -ge 3 ] && HS="$1 $2 $3" || HS="3000 1500 750"
+[ $# -ge 3 ] && HS="$1 $2 $3" || HS="2000 1400 1000"
 HERE=$(cd "$(dirname "$0")" && pwd)
 SAMPLE=$HERE/../../data-samples/po-plain
 FAULT_OPTS=${FAULT_OPTS:---fault-solver mumps}
@@ -53,8 +53,9 @@ for h in hs:
     log = open(os.path.join(d, "faulted.log")).read()
     m = re.search(r"mesh: (\d+) nodes, (\d+) tetrahedra, (\d+) interface elements", log)
     s = re.search(r"maximum safe scale ([0-9.]+)", log)
+    top = re.search(r"reaches chi = 1 up to scale ([0-9.]+)", log)
     info[h] = (m.groups() if m else ("?", "?", "?"), s.group(1) if s else
-               ("none" if "no scale" in log else ("> max" if "never" in log else "?")),
+               ("none" if "no scale of the later swing" in log else ("> " + top.group(1) if top else "?")),
                open(os.path.join(d, "seconds")).read().strip())
 faults = list(rows[hs[0]])
 print("| FAULT_H (m) | nodes | tetrahedra | interface elements | " + " | ".join(faults) + " | safe scale | wall (s) |")
