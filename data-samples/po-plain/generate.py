@@ -46,7 +46,7 @@ VARIANTS = {
 
 OUTPUTS = [
     "domain.geojson", "refinement.geojson", "reservoir_traces.geojson", "aquifers.geojson",
-    "faults.geojson", "sections.geojson", "ps_points.geojson",
+    "faults.geojson", "fault_footprints.geojson", "sections.geojson", "ps_points.geojson",
 ] + ["surfaces/" + s[1] for s in F.SURFACES] + [
     "strata.toml", "strata_coarse.toml", "case.toml", "pressure_pool_a.csv", "pressure_pool_c.csv",
     "insar_vertical.csv", "insar_east.csv",
@@ -153,7 +153,8 @@ def write_vectors(tmp, field, variant, domain, size_far, size_res, seed):
         if g.GetGeometryType() != ogr.wkbPolygon:
             raise RuntimeError(f"aquifer of {u} is not a single polygon")
         feats.append(({"name": u, "unit": u, "fault_z_m": V.AQUIFER_Z[u],
-                       "note": "between the regional faults at fault_z_m, within 9 km of the crest along the axis"
+                       "note": "between its hydraulic limits across the axis at fault_z_m (the regional faults run"
+                       f" at least {V.FAULT_CLEARANCE:.0f} m outside), within 9 km of the crest along the axis"
                        + ("; ends at the pinch-out of Pool C" if u == "Pool C" else "")}, g))
     IO.write_geojson(os.path.join(tmp, "aquifers.geojson"), "aquifers", epsg, ogr.wkbPolygon,
                      [("name", "str"), ("unit", "str"), ("fault_z_m", "real"), ("note", "str")], feats)
@@ -163,9 +164,16 @@ def write_vectors(tmp, field, variant, domain, size_far, size_res, seed):
         for f2, l2 in faults[i + 1:]:
             if V.min_separation(f1, l1, f2, l2) < 300.0:
                 raise RuntimeError(f"faults {f1['name']} and {f2['name']} come closer than 300 m")
+    for f, line in V.regional_fault_lines():   # outside the depleted volume (thesis 4.3.4)
+        for u, g in aquifers.items():
+            d = V.aquifer_clearance(f, line, g)
+            if d < V.FAULT_CLEARANCE:
+                raise RuntimeError(f"fault {f['name']} comes {d:.0f} m from the {u} aquifer over the sands' "
+                                   f"depths (at least {V.FAULT_CLEARANCE:.0f} m)")
     feats = []
     for f, line in faults:
-        g = clip(V.line_geom(line), inner)
+        trace_z = V.REGIONAL_TRACE_Z if f in V.REGIONAL_FAULTS else f["top_m"]
+        g = clip(V.line_geom(V.fault_line_at(f, line, trace_z)), inner)
         if g is None:
             continue
         if g.GetGeometryType() != ogr.wkbLineString:
@@ -173,11 +181,21 @@ def write_vectors(tmp, field, variant, domain, size_far, size_res, seed):
         kind = f.get("kind", "local_extensional")
         note = f.get("note", "sub-vertical extensional/transtensive fault across the top of the trap")
         feats.append(({"name": f["name"], "kind": kind, "top_m": f["top_m"], "bottom_m": f["bottom_m"],
-                       "dip_deg": f["dip_deg"], "dip_dir_deg": f["dip_dir_deg"], "trace_z_m": f["top_m"],
+                       "dip_deg": f["dip_deg"], "dip_dir_deg": f["dip_dir_deg"], "trace_z_m": trace_z,
                        "note": note}, g))
     IO.write_geojson(os.path.join(tmp, "faults.geojson"), "faults", epsg, ogr.wkbLineString,
                      [("name", "str"), ("kind", "str"), ("top_m", "real"), ("bottom_m", "real"),
                       ("dip_deg", "real"), ("dip_dir_deg", "real"), ("trace_z_m", "real"), ("note", "str")], feats)
+
+    feats = []
+    for f, line in V.regional_fault_lines():
+        g = clip(V.fault_footprint(f, line), dom)
+        if g is None or g.GetGeometryType() != ogr.wkbPolygon:
+            raise RuntimeError(f"footprint of fault {f['name']} is not a single polygon in the domain")
+        feats.append(({"name": f["name"], "top_m": f["top_m"], "bottom_m": f["bottom_m"],
+                       "note": "plan projection of the fault surface + 250 m: refinement of the faulted model's plan"}, g))
+    IO.write_geojson(os.path.join(tmp, "fault_footprints.geojson"), "fault_footprints", epsg, ogr.wkbPolygon,
+                     [("name", "str"), ("top_m", "real"), ("bottom_m", "real"), ("note", "str")], feats)
 
     feats = []
     for attrs, line in V.sections():
@@ -243,7 +261,7 @@ def generate(args):
                 "ELEVATION_AT_A016VJP_M": f"{z:.1f}", "GENERATOR": "data-samples/po-plain/generate.py",
                 "SEED": args.seed, "VARIANT": variant})
 
-        log(args, "vectors: domain, traces, aquifers, faults, sections, PS points")
+        log(args, "vectors: domain, traces, aquifers, faults, fault footprints, sections, PS points")
         traces, aquifers, pts, heights = write_vectors(tmp, field, variant, domain, size_far, size_res, args.seed)
 
         with open(os.path.join(tmp, "strata.toml"), "w", newline="\n") as fh:

@@ -15,19 +15,30 @@ import po_field as F
 # back-thrust with southern vergence, E-W to NW-SE, from -500 to -5,000 m. Each line is the trace of
 # the fault plane at z = top_m; the surface is that line translated down-dip along dip_dir_deg with
 # the dip dip_deg down to bottom_m. Vertices in the fold frame (u along the axis, v towards NNE).
+# The faults lie outside the depleted volume (thesis 4.3.4): both dip towards the pools, so their
+# surfaces come closest to the aquifers at the deepest sands (about -1,800 m on the flanks);
+# FAULT_OFFSET_V moves each fault across the axis, away from the aquifers' hydraulic limits (the
+# lines "v" at AQUIFER_Z, which stay where they were), so that every fault surface keeps at least
+# FAULT_CLEARANCE from every aquifer over the sands' depths (generate.py checks it).
 # --------------------------------------------------------------------------------------------------
+FAULT_OFFSET_V = {"overthrust_north": 2500.0, "backthrust_south": -2200.0}
+FAULT_CLEARANCE = 1800.0                  # m, horizontal, fault surface to aquifer polygon
+SANDS_Z = (-1400.0, -1850.0)              # elevations of the pools' sands in the aquifers (top, bottom)
+REGIONAL_TRACE_Z = -1500.0                # faults.geojson gives the regional traces at the pools' level
+                                          # (trace_z_m), which keeps them inside the small twin's domain
+
 REGIONAL_FAULTS = [
     {
         "name": "overthrust_north", "kind": "regional_overthrust",
         "u": [-15000.0, -7000.0, 0.0, 7000.0, 15000.0], "v": [4800.0, 5100.0, 5200.0, 5000.0, 4700.0],
         "top_m": -500.0, "bottom_m": -5000.0, "dip_deg": 35.0, "dip_dir_deg": F.AXIS_BEARING + 90.0,
-        "note": "main thrust of the buried Apennine front, verging N; dips SSW beneath the anticline",
+        "note": "main thrust of the buried Apennine front, verging N; dips SSW beneath the anticline, under the pools below -3,500 m",
     },
     {
         "name": "backthrust_south", "kind": "regional_backthrust",
         "u": [-14000.0, -7000.0, 0.0, 7000.0, 14000.0], "v": [-5100.0, -5200.0, -5300.0, -5100.0, -5000.0],
         "top_m": -500.0, "bottom_m": -5000.0, "dip_deg": 60.0, "dip_dir_deg": F.AXIS_BEARING - 90.0,
-        "note": "back-thrust verging S; dips NNE, stays 0.7-0.9 km clear of the overthrust at -5,000 m",
+        "note": "back-thrust verging S; dips NNE, about 5.4 km clear of the overthrust at -5,000 m",
     },
 ]
 
@@ -55,7 +66,7 @@ AQUIFER_HALF_LENGTH = 9000.0   # lateral (along-axis) limit of the aquifers eith
 def regional_fault_lines():
     out = []
     for f in REGIONAL_FAULTS:
-        x, y = F.from_uv(f["u"], f["v"])
+        x, y = F.from_uv(f["u"], np.asarray(f["v"]) + FAULT_OFFSET_V[f["name"]])
         out.append((f, list(zip(x.tolist(), y.tolist()))))
     return out
 
@@ -133,7 +144,8 @@ def trace(field, pool):
 # --------------------------------------------------------------------------------------------------
 
 def _interp_v(f, u, z):
-    """v of the fault's trace at elevation z, at along-axis positions u."""
+    """v of the aquifer's hydraulic limit at elevation z, at along-axis positions u: the fault's trace
+    there before FAULT_OFFSET_V moved the fault away (the aquifers keep the limits they had)."""
     shift = (f["top_m"] - z) / math.tan(math.radians(f["dip_deg"]))
     b = math.radians(f["dip_dir_deg"])
     du = shift * (math.sin(b) * F.AX[0] + math.cos(b) * F.AX[1])
@@ -150,6 +162,19 @@ def min_separation(f1, line1, f2, line2, n=20):
         return math.inf
     return min(line_geom(fault_line_at(f1, line1, z)).Distance(line_geom(fault_line_at(f2, line2, z)))
                for z in np.linspace(lo, hi, n))
+
+
+def fault_footprint(f, line, margin=250.0):
+    """Plan projection of a fault surface (its trace at top_m, then at bottom_m reversed), widened by
+    margin: the band ugs-mesh2d refines so that the faulted model meshes the fault, not just its trace."""
+    ring = fault_line_at(f, line, f["top_m"]) + fault_line_at(f, line, f["bottom_m"])[::-1]
+    ring.append(ring[0])
+    return polygon_geom(ring).Buffer(margin, 4)
+
+
+def aquifer_clearance(f, line, geom, n=10):
+    """Smallest horizontal distance between a fault surface and a polygon over the sands' depths."""
+    return min(line_geom(fault_line_at(f, line, z)).Distance(geom) for z in np.linspace(*SANDS_Z, n))
 
 
 def aquifer(field, unit):

@@ -331,6 +331,19 @@ def check_vectors(d, tag, variant):
             and -2000.0 < a["bottom_m"] and a["top_m"] < -1000.0 and tr["Pool A"].Buffer(500.0).Intersects(g)
     check(ok, f"[{tag}] faults: overthrust (dips S, N vergence) + back-thrust (dips N), E-W..NW-SE, -500..-5,000 m; "
           f"{len(local)} sub-vertical local faults NE-SW..E-W over the trap")
+    # the regional faults lie outside the depleted volume (thesis 4.3.4): at every elevation of the
+    # pools' sands (-1,400 .. -1,850 m on the flanks) the fault surface (the trace moved down-dip) is at
+    # least 1.8 km from every aquifer polygon (it bounded them, and crossed their deep flanks, before)
+    gap = math.inf
+    for a, g in regional:
+        b = math.radians(a["dip_dir_deg"])
+        for z in np.linspace(-1400.0, -1850.0, 10):
+            shift = (a["trace_z_m"] - z) / math.tan(math.radians(a["dip_deg"]))
+            moved = ogr.Geometry(ogr.wkbLineString)
+            for x, y in g.GetPoints():
+                moved.AddPoint_2D(x + shift * math.sin(b), y + shift * math.cos(b))
+            gap = min([gap] + [moved.Distance(p) for p in aq.values()])
+    check(gap >= 1800.0, f"[{tag}] regional faults at least 1.8 km from the aquifers over the sands' depths ({gap:.0f} m)")
     # sections
     ds, lyr, names, feats = layer_features(os.path.join(d, "sections.geojson"))
     check({a["name"] for a, g in feats} == {"A-A", "B-B"} and
@@ -482,7 +495,7 @@ def main():
                     run_generator(sample, full), run_generator(sample, other, "--small", "--seed", "7")]):
             raise SystemExit(1)
         h1, h2 = file_digests(small1), file_digests(small2)
-        check(h1 == h2 and len(h1) == 25, f"determinism: two runs with the same seed give identical bytes ({len(h1)} files)")
+        check(h1 == h2 and len(h1) == 26, f"determinism: two runs with the same seed give identical bytes ({len(h1)} files)")
         hs = file_digests(other)
         diff = sorted(k for k in h1 if h1[k] != hs.get(k))
         check("insar_vertical.csv" in diff and "pressure_pool_c.csv" in diff,
