@@ -50,19 +50,6 @@ struct FaultNodes {
   double sx = 1, sy = 0, s0 = 0;                    // s = x sx + y sy - s0
 };
 
-std::string fault_name(const Mesh* mesh, std::int32_t tag) {
-  std::string name;
-  if (mesh) {
-    for (int dim : {3, 2})
-      if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty() && g->name.rfind("fault:", 0) == 0)
-        name = g->name;
-    for (int dim : {2, 3})
-      if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty()) name = g->name;
-  }
-  if (name.rfind("fault:", 0) == 0) name = name.substr(6);
-  return name.empty() ? fmt::format("fault {}", tag) : name;
-}
-
 // The faults of a file written by ugs-solve (triangles in fault groups, node fields). s comes from
 // the node field `along_strike` when the file has it (the per-pair CSVs' coordinate), else from the
 // same definition: the horizontal direction normal to the mean normal, eastwards (northwards), from
@@ -98,7 +85,7 @@ std::vector<FaultNodes> read_fault_nodes(const FieldSeriesReader& r, const Mesh*
   const Field as = have_s ? r.node_field(0, "along_strike") : Field{};
   std::vector<FaultNodes> out;
   for (auto& [tag, f] : by_tag) {
-    f.name = fault_name(mesh, tag);
+    f.name = insar::fault_group_name(mesh, tag);
     double nx = 0, ny = 0, nz = 0;
     for (const auto& t : f.tri) {
       const Point3 &a = x[f.nodes[t[0]]], &b = x[f.nodes[t[1]]], &d = x[f.nodes[t[2]]];

@@ -143,6 +143,36 @@ def plot_section(m, fig):
     return f
 
 
+def draw_pressures(ax, fig, lo, hi, colors, fit):
+    """The pool pressures (fig["pressure"], long CSV pool,date,value) on a second y axis over [lo, hi],
+    and the legend of both axes. colors: one colour per pool (else grey); fit: the y range of what
+    is visible."""
+    handles, labels = ax.get_legend_handles_labels()
+    if fig.get("pressure"):
+        ax2 = ax.twinx()
+        _, prow = read_csv(fig["pressure"])
+        pools = {}
+        for pool, d, val in prow:
+            pools.setdefault(pool, ([], []))
+            pools[pool][0].append(d)
+            pools[pool][1].append(float(val))
+        styles = ["--", ":", "-."]
+        for i, (pool, (pd, pv)) in enumerate(pools.items()):
+            ax2.plot(dates(pd), np.array(pv), styles[i % 3], color=f"C{i}" if colors else "0.35", lw=1.0 if colors else 0.9,
+                     label=f"{pool} pressure")
+        ax2.set_xlim(lo, hi)
+        if fit:
+            pvis = np.concatenate([np.array(pv)[(dates(pd) >= lo) & (dates(pd) <= hi)] for pd, pv in pools.values()])
+            if pvis.size:
+                ppad = 0.08 * max(float(np.ptp(pvis)), 1e-3)
+                ax2.set_ylim(float(pvis.min()) - ppad, float(pvis.max()) + ppad)
+        ax2.set_ylabel(fig["pressure_label"])
+        h2, l2 = ax2.get_legend_handles_labels()
+        handles += h2
+        labels += l2
+    ax.legend(handles, labels, loc="upper left", fontsize=8)
+
+
 def plot_series(m, fig):
     f = new_figure(m, fig)
     ax = f.add_subplot(1, 1, 1)
@@ -172,28 +202,7 @@ def plot_series(m, fig):
     locator = mdates.AutoDateLocator()
     ax.xaxis.set_major_locator(locator)
     ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
-    handles, labels = ax.get_legend_handles_labels()
-    if fig.get("pressure"):
-        ax2 = ax.twinx()
-        _, prow = read_csv(fig["pressure"])
-        pools = {}
-        for pool, d, val in prow:
-            pools.setdefault(pool, ([], []))
-            pools[pool][0].append(d)
-            pools[pool][1].append(float(val))
-        styles = ["--", ":", "-."]
-        for i, (pool, (pd, pv)) in enumerate(pools.items()):
-            ax2.plot(dates(pd), np.array(pv), styles[i % 3], color=f"C{i}", lw=1.0, label=f"{pool} pressure")
-        ax2.set_xlim(lo, hi)
-        pvis = np.concatenate([np.array(pv)[(dates(pd) >= lo) & (dates(pd) <= hi)] for pd, pv in pools.values()])
-        if pvis.size:
-            ppad = 0.08 * max(float(np.ptp(pvis)), 1e-3)
-            ax2.set_ylim(float(pvis.min()) - ppad, float(pvis.max()) + ppad)
-        ax2.set_ylabel(fig["pressure_label"])
-        h2, l2 = ax2.get_legend_handles_labels()
-        handles += h2
-        labels += l2
-    ax.legend(handles, labels, loc="upper left", fontsize=8)
+    draw_pressures(ax, fig, lo, hi, colors=True, fit=True)
     return f
 
 
@@ -276,23 +285,7 @@ def plot_chi_series(m, fig):
     locator = mdates.AutoDateLocator()
     ax.xaxis.set_major_locator(locator)
     ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
-    handles, labels = ax.get_legend_handles_labels()
-    if fig.get("pressure"):
-        ax2 = ax.twinx()
-        _, prow = read_csv(fig["pressure"])
-        pools = {}
-        for pool, d, val in prow:
-            pools.setdefault(pool, ([], []))
-            pools[pool][0].append(d)
-            pools[pool][1].append(float(val))
-        for i, (pool, (pd, pv)) in enumerate(pools.items()):
-            ax2.plot(dates(pd), np.array(pv), ["--", ":", "-."][i % 3], color="0.35", lw=0.9, label=f"{pool} pressure")
-        ax2.set_xlim(lo, hi)
-        ax2.set_ylabel(fig["pressure_label"])
-        h2, l2 = ax2.get_legend_handles_labels()
-        handles += h2
-        labels += l2
-    ax.legend(handles, labels, loc="upper left", fontsize=8)
+    draw_pressures(ax, fig, lo, hi, colors=False, fit=False)
     return f
 
 

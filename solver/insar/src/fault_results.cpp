@@ -11,6 +11,19 @@
 
 namespace ugs::insar {
 
+std::string fault_group_name(const Mesh* mesh, std::int32_t tag) {
+  std::string name;
+  if (mesh) {
+    for (int dim : {3, 2})
+      if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty() && g->name.rfind("fault:", 0) == 0)
+        name = g->name;
+    for (int dim : {2, 3})
+      if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty()) name = g->name;
+  }
+  if (name.rfind("fault:", 0) == 0) name = name.substr(6);
+  return name.empty() ? fmt::format("fault {}", tag) : name;
+}
+
 std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& r, std::size_t step, const Mesh* mesh,
                                      const std::string& field) {
   const auto x = checked_coordinates(r);
@@ -49,20 +62,7 @@ std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& r, std::size_t ste
   for (std::size_t i = 0; i < tri.size(); ++i) {
     const std::int32_t tag = row[i] < mats.size() ? mats[row[i]] : 0;
     auto& f = by_tag[tag];
-    if (f.name.empty()) {
-      std::string name;
-      // Physical tags are per dimension: prefer a fault group (interface prisms are 3D, fault
-      // triangles 2D), then any group with the tag.
-      if (mesh) {
-        for (int dim : {3, 2})
-          if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty() && g->name.rfind("fault:", 0) == 0)
-            name = g->name;
-        for (int dim : {2, 3})
-          if (const PhysicalGroup* g = mesh->find_physical_tag(dim, tag); g && name.empty()) name = g->name;
-      }
-      if (name.rfind("fault:", 0) == 0) name = name.substr(6);
-      f.name = name.empty() ? fmt::format("fault {}", tag) : name;
-    }
+    if (f.name.empty()) f.name = fault_group_name(mesh, tag);
     f.triangles.push_back({x[tri[i][0]], x[tri[i][1]], x[tri[i][2]]});
     f.chi.push_back(chi[i]);
     if (std::isfinite(chi[i])) f.max_chi = std::max(f.max_chi, chi[i]);

@@ -21,6 +21,11 @@ struct FaultChi {
   double max_chi = 0;
 };
 
+// The name of the fault whose cells carry physical tag `tag`: the mesh's fault:<name> group of that
+// tag (interface prisms are 3-D, fault triangles 2-D; physical tags are per dimension), else any group
+// with the tag, else "fault <tag>"; the "fault:" prefix dropped.
+std::string fault_group_name(const Mesh* mesh, std::int32_t tag);
+
 // InputError when the file has no fault cells or no field `field` at that step.
 std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& faults, std::size_t step, const Mesh* mesh,
                                      const std::string& field = "chi");
