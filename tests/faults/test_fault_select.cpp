@@ -203,7 +203,7 @@ TEST(FaultTraces, ReadsTheSampleTwin) {
   EXPECT_DOUBLE_EQ(traces[0].bottom, -5000);
   EXPECT_DOUBLE_EQ(traces[0].dip_deg, 35);
   EXPECT_DOUBLE_EQ(traces[0].dip_dir_deg, 195);
-  EXPECT_DOUBLE_EQ(traces[0].trace_z, -500);
+  EXPECT_DOUBLE_EQ(traces[0].trace_z, -1500);  // given at the pools' level (docs/fault-convergence.md)
   EXPECT_EQ(traces[0].parts.at(0).size(), 5u);
   EXPECT_EQ(traces[5].name, "local_4");
 }
