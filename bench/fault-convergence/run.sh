@@ -3,20 +3,25 @@
 # the demo's faulted model (data-samples/po-plain Makefile, SCALE=demo, target `faults`) on three
 # fault-mesh resolutions FAULT_H (the plan size over the faults' plan projections and the reservoir),
 # the maximum chi per fault over the demo's fault dates per resolution, the change between the two
-# finest (target < 0.05 per fault), the maximum safe scale of the 2025 swing and the wall times.
+# finest, the maximum safe scale of the 2025 swing and the wall times. The criterion (change < 0.05 per
+# fault between the two finest) applies to the largest chi over the pairs at least CORNER_M (default
+# 50 m) from the depleted volume's corners (corners.py: where a fault cuts the top or base of a depleted
+# layer the stress change is singular and its maximum does not converge); the raw maximum is printed too.
 #
-#   sh bench/fault-convergence/run.sh BUILD_DIR [WORK_DIR] [H1 H2 H3]    (default 2000 1400 1000 m)
+#   sh bench/fault-convergence/run.sh BUILD_DIR [WORK_DIR] [H1 H2 H3]    (default 1400 1000 700 m)
+#
+# NO_SCALE=1 skips the safe-scale search; FAULT_STRATA=strata_faulted.toml meshes finer down dip.
 #
 # Each resolution runs in WORK_DIR/h<H> (default BUILD_DIR/bench-fault-convergence); a finished one
 # (faulted.h5 newer than its inputs) is not rerun. FAULT_OPTS picks the saddle-point solver
 # (default `--fault-solver mumps`: on these flat layered meshes the field split took 222 FGMRES
 # iterations per Newton iteration at FAULT_H = 1500, 133 s for the 1964 step).
-# Prints a Markdown table; exit 1 when a run fails or the two finest differ by 0.05 or more.
+# Prints Markdown tables; exit 1 when a run fails or the criterion is not met.
 set -eu
 B=$(cd "${1:?usage: run.sh BUILD_DIR [WORK_DIR] [H1 H2 H3]}" && pwd)
 W=${2:-$B/bench-fault-convergence}
 shift $(( $# < 2 ? $# : 2 ))
-[ $# -ge 3 ] && HS="$1 $2 $3" || HS="2000 1400 1000"
+[ $# -ge 3 ] && HS="$1 $2 $3" || HS="1400 1000 700"
 HERE=$(cd "$(dirname "$0")" && pwd)
 export HERE
 SAMPLE=$(cd "$HERE/../../data-samples/po-plain" && pwd)
@@ -35,7 +40,7 @@ for h in $HS; do
   cmp -s "$out/case.tmp" "$out/case.toml" && rm "$out/case.tmp" || mv "$out/case.tmp" "$out/case.toml"
   t0=$(date +%s)
   make -s -C "$SAMPLE" faults UGS_BIN="$B/tools" OUT="$out" SCALE=demo FAULT_H="$h" FAULT_OPTS="$FAULT_OPTS" FAULT_CASE="$out/case.toml" \
-    ${NO_SCALE:+FAULT_SEARCH=} \
+    ${NO_SCALE:+FAULT_SEARCH=} ${FAULT_STRATA:+FAULT_STRATA=$FAULT_STRATA} \
     > "$out/make.log" 2>&1 || { tail -5 "$out/make.log"; echo "FAIL: the faulted run at FAULT_H=$h failed"; exit 1; }
   t1=$(date +%s)
   [ -f "$out/seconds" ] && [ "$out/seconds" -nt "$out/faulted.h5" ] || echo $(( t1 - t0 )) > "$out/seconds"
