@@ -48,7 +48,7 @@ OUTPUTS = [
     "domain.geojson", "refinement.geojson", "reservoir_traces.geojson", "aquifers.geojson",
     "faults.geojson", "fault_footprints.geojson", "sections.geojson", "ps_points.geojson",
 ] + ["surfaces/" + s[1] for s in F.SURFACES] + [
-    "strata.toml", "strata_coarse.toml", "case.toml", "pressure_pool_a.csv", "pressure_pool_c.csv",
+    "strata.toml", "strata_coarse.toml", "strata_faulted.toml", "case.toml", "pressure_pool_a.csv", "pressure_pool_c.csv",
     "insar_vertical.csv", "insar_east.csv",
 ]
 
@@ -268,6 +268,8 @@ def generate(args):
             fh.write(T.strata_toml(variant, args.seed))
         with open(os.path.join(tmp, "strata_coarse.toml"), "w", newline="\n") as fh:
             fh.write(T.strata_toml(variant, args.seed, coarse=True))
+        with open(os.path.join(tmp, "strata_faulted.toml"), "w", newline="\n") as fh:
+            fh.write(T.strata_toml(variant, args.seed, faulted=True))
         with open(os.path.join(tmp, "case.toml"), "w", newline="\n") as fh:
             fh.write(T.case_toml(variant, args.seed))
 

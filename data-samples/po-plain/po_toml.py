@@ -26,6 +26,12 @@ BIAS = {"Marls": 1.3}
 # 41, keeping two in each pool so the reservoir still bends, and the graded marls under it.
 COARSE_LAYERS = {"Pool A": 2, "Pool C": 2, "Marls": 4}
 
+# strata_faulted.toml (the faulted model's down-dip check, Makefile FAULT_STRATA=strata_faulted.toml):
+# strata_coarse.toml with the units the faults cross split finer, since the fault mesh's down-dip
+# resolution is the sub-layers' (FAULT_H only sets the plan size): the Santerno clays over the pools
+# (258 m at A016VJP) in 3, the marls in 8 (first sub-layer 298 m instead of 1,150 m at the crest).
+FAULTED_LAYERS = dict(COARSE_LAYERS, **{"Santerno clays": 3, "Marls": 8})
+
 
 def _q(s):
     return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
@@ -35,12 +41,18 @@ def _list(items):
     return "[" + ", ".join(_q(s) for s in items) + "]"
 
 
-def strata_toml(variant, seed, coarse=False):
+def strata_toml(variant, seed, coarse=False, faulted=False):
     def n_layers(unit, layers):
+        if faulted:
+            return FAULTED_LAYERS.get(unit, 1)
         return COARSE_LAYERS.get(unit, 1) if coarse else layers
     total = sum(n_layers(s[4], s[5]) for s in F.SURFACES)
     L = []
-    if coarse:
+    if faulted:
+        L.append("# Stratigraphy of the po-plain twin's faulted model, finer down dip (Makefile FAULT_STRATA=")
+        L.append("# strata_faulted.toml): the sub-layers of strata_coarse.toml, finer in the units the faults cross")
+        L.append("# (Santerno clays, marls), to check the down-dip resolution (docs/fault-convergence.md).")
+    elif coarse:
         L.append("# Coarse stratigraphy of the po-plain twin for the end-to-end demo (Makefile SCALE=demo|tiny):")
         L.append("# the surfaces of Table 4.1 with fewer sub-layers than strata.toml, to keep the demo fast.")
     else:

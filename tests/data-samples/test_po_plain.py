@@ -161,6 +161,18 @@ def check_strata(d, tag):
             lyr.SetAttributeFilter(m["where"])
             ok = ok and lyr.GetFeatureCount() == 1
         check(ok, f"[{tag}] material {m.get('name')}: units exist, polygon filter selects one feature")
+    # the faulted model's stratigraphy (Makefile FAULT_STRATA): strata_coarse.toml's surfaces and materials,
+    # finer down dip in the units the faults cross (docs/fault-convergence.md)
+    with open(os.path.join(d, "strata_coarse.toml"), "rb") as fh:
+        co = tomllib.load(fh)
+    with open(os.path.join(d, "strata_faulted.toml"), "rb") as fh:
+        fa = tomllib.load(fh)
+    cl = {u["name"]: u["layers"] for u in co["unit"]}
+    fl = {u["name"]: u["layers"] for u in fa["unit"]}
+    finer = {u: (cl[u], fl[u]) for u in cl if fl.get(u) != cl[u]}
+    check(fa["surface"] == co["surface"] and fa["material"] == co["material"] and list(fl) == list(cl)
+          and finer == {"Santerno clays": (1, 3), "Marls": (4, 8)} and sum(fl.values()) == 22,
+          f"[{tag}] strata_faulted.toml = strata_coarse.toml with finer units {finer}, {sum(fl.values())} sub-layers")
     return st
 
 
@@ -495,7 +507,7 @@ def main():
                     run_generator(sample, full), run_generator(sample, other, "--small", "--seed", "7")]):
             raise SystemExit(1)
         h1, h2 = file_digests(small1), file_digests(small2)
-        check(h1 == h2 and len(h1) == 26, f"determinism: two runs with the same seed give identical bytes ({len(h1)} files)")
+        check(h1 == h2 and len(h1) == 27, f"determinism: two runs with the same seed give identical bytes ({len(h1)} files)")
         hs = file_digests(other)
         diff = sorted(k for k in h1 if h1[k] != hs.get(k))
         check("insar_vertical.csv" in diff and "pressure_pool_c.csv" in diff,
