@@ -38,6 +38,16 @@ def read_csv(path):
     return rows[0], rows[1:]
 
 
+def grouped(rows):
+    """Long-format rows (name, date, value): {name: ([dates], [values])}, in the order met."""
+    out = {}
+    for name, d, val in rows:
+        out.setdefault(name, ([], []))
+        out[name][0].append(d)
+        out[name][1].append(float(val))
+    return out
+
+
 def dates(values):
     return np.array([np.datetime64(v[:19]) for v in values], dtype="datetime64[s]")
 
@@ -150,12 +160,7 @@ def draw_pressures(ax, fig, lo, hi, colors, fit):
     handles, labels = ax.get_legend_handles_labels()
     if fig.get("pressure"):
         ax2 = ax.twinx()
-        _, prow = read_csv(fig["pressure"])
-        pools = {}
-        for pool, d, val in prow:
-            pools.setdefault(pool, ([], []))
-            pools[pool][0].append(d)
-            pools[pool][1].append(float(val))
+        pools = grouped(read_csv(fig["pressure"])[1])
         styles = ["--", ":", "-."]
         for i, (pool, (pd, pv)) in enumerate(pools.items()):
             ax2.plot(dates(pd), np.array(pv), styles[i % 3], color=f"C{i}" if colors else "0.35", lw=1.0 if colors else 0.9,
@@ -263,12 +268,7 @@ def plot_faults(m, fig):
 def plot_chi_series(m, fig):
     f = new_figure(m, fig, layout="constrained")
     ax = f.add_subplot(1, 1, 1)
-    _, rows = read_csv(fig["csv"])
-    faults = {}
-    for fault, d, val in rows:
-        faults.setdefault(fault, ([], []))
-        faults[fault][0].append(d)
-        faults[fault][1].append(float(val))
+    faults = grouped(read_csv(fig["csv"])[1])
     lo = hi = None
     for i, (fault, (fd, fv)) in enumerate(faults.items()):
         t = dates(fd)
