@@ -4,7 +4,7 @@
 //     (meshing/src/plan_inputs.cpp, through meshing/src/geodata.cpp),
 //   - the faults file of ugs-meshgen and ugs-faultinsert (meshing/src/fault_traces_ogr.cpp),
 //   - a polygon / feature file (geo::read_vector, --inside of ugs-calibrate, material polygons),
-//   - the PS points of ugs-sample (solver/insar/src/ps_data.cpp, OGR layout).
+//   - the PS points of ugs-sample (analysis/insar/src/ps_data.cpp, OGR layout).
 #include <cpl_vsi.h>
 #include <gdal_priv.h>
 

@@ -1,5 +1,5 @@
 // InSAR persistent scatterers from CSV: the EGMS layout and the generic x,y / lon,lat layout
-// (solver/insar/src/ps_data.cpp), read as ugs-sample and ugs-calibrate read them: once keeping the
+// (analysis/insar/src/ps_data.cpp), read as ugs-sample and ugs-calibrate read them: once keeping the
 // file's coordinates, once reprojected to the model CRS with series required.
 #include "fuzz_support.hpp"
 #include "ugs/insar/ps_data.hpp"
