@@ -9,26 +9,10 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/formats/face_key.hpp"
 
 namespace ugs {
 namespace {
-
-using Face = std::array<std::uint32_t, 3>;
-
-Face face_key(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-  Face f{a, b, c};
-  std::sort(f.begin(), f.end());
-  return f;
-}
-
-struct FaceHash {
-  std::size_t operator()(const Face& f) const {
-    std::uint64_t h = f[0];
-    h = h * 0x9E3779B97F4A7C15ull ^ f[1];
-    h = h * 0x9E3779B97F4A7C15ull ^ f[2];
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
 
 // The four faces of a tetrahedron, as local node positions.
 constexpr int kTetFaces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
@@ -141,7 +125,7 @@ Mesh extract_submesh(const Mesh& parent, const SubmeshSpec& spec, SubmeshReport*
   }
 
   // 5. Barrier faces given as triangles, and the interface prisms (dropped; ties for non-barriers).
-  std::unordered_map<Face, std::string, FaceHash> barrier_faces;
+  std::unordered_map<FaceKey, std::string, FaceKeyHash> barrier_faces;
   std::map<std::string, std::vector<std::pair<std::uint32_t, std::uint32_t>>> ties;
   std::set<std::pair<std::uint32_t, std::uint32_t>> tie_seen;
   for (const ElementBlock& b : parent.blocks) {
@@ -240,7 +224,7 @@ Mesh extract_submesh(const Mesh& parent, const SubmeshSpec& spec, SubmeshReport*
   std::set<std::pair<int, int>> used_entities;
   for (const auto& k : kept) used_entities.insert({3, parent.blocks[k.block].entity_tag});
   // Parent triangles that are faces of kept tetrahedra (nodes as that tetrahedron has them).
-  std::unordered_map<Face, std::pair<std::size_t, std::size_t>, FaceHash> triangle_at;
+  std::unordered_map<FaceKey, std::pair<std::size_t, std::size_t>, FaceKeyHash> triangle_at;
   for (std::size_t bi = 0; bi < parent.blocks.size(); ++bi) {
     const ElementBlock& b = parent.blocks[bi];
     if (b.type != ElementType::Triangle) continue;

@@ -13,26 +13,13 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/formats/face_key.hpp"
 #include "ugs/mechanics/model.hpp"
 
 namespace ugs::mech {
 namespace {
 
-using Face = std::array<std::uint32_t, 3>;
-
-struct FaceHash {
-  std::size_t operator()(const Face& f) const {
-    std::uint64_t h = f[0];
-    h = h * 0x9E3779B97F4A7C15ull ^ f[1];
-    h = h * 0x9E3779B97F4A7C15ull ^ f[2];
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
-
-Face sorted(Face f) {
-  std::sort(f.begin(), f.end());
-  return f;
-}
+using Triangle = std::array<std::uint32_t, 3>;  // node indices of a boundary triangle
 
 std::string boundary_groups(const Mesh& mesh) {
   std::string s;
@@ -42,8 +29,8 @@ std::string boundary_groups(const Mesh& mesh) {
 }
 
 // The triangles of bnd:<group> (mesh node indices).
-std::vector<Face> group_triangles(const Mesh& mesh, const PhysicalGroup& g) {
-  std::vector<Face> tris;
+std::vector<Triangle> group_triangles(const Mesh& mesh, const PhysicalGroup& g) {
+  std::vector<Triangle> tris;
   for (const auto& b : mesh.blocks) {
     if (b.entity_dim != 2 || b.type != ElementType::Triangle) continue;
     const Entity* e = mesh.find_entity(2, b.entity_tag);
@@ -61,7 +48,7 @@ std::vector<Face> group_triangles(const Mesh& mesh, const PhysicalGroup& g) {
 std::vector<std::array<double, 3>> boundary_traction_forces(const Mesh& mesh, const CaseFile& cs, const Model& model) {
   std::vector<std::array<double, 3>> f(mesh.num_nodes(), {0, 0, 0});
   // Every group must exist (also the in-situ ones, which add nothing).
-  std::vector<std::pair<const TractionSpec*, std::vector<Face>>> loaded;
+  std::vector<std::pair<const TractionSpec*, std::vector<Triangle>>> loaded;
   for (const auto& t : cs.tractions) {
     const PhysicalGroup* g = mesh.find_physical(2, "bnd:" + t.group);
     if (!g)
@@ -75,20 +62,20 @@ std::vector<std::array<double, 3>> boundary_traction_forces(const Mesh& mesh, co
   if (loaded.empty()) return f;
 
   // The tetrahedron each loaded triangle bounds.
-  std::unordered_map<Face, std::int64_t, FaceHash> tet_of;
+  std::unordered_map<FaceKey, std::int64_t, FaceKeyHash> tet_of;
   for (const auto& [spec, tris] : loaded)
-    for (const auto& tri : tris) tet_of.emplace(sorted(tri), -1);
+    for (const auto& tri : tris) tet_of.emplace(face_key(tri), -1);
   static constexpr int kFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   for (std::size_t t = 0; t < model.tets.size(); ++t)
     for (const auto& fi : kFaces) {
-      const auto it = tet_of.find(sorted({model.tets[t][fi[0]], model.tets[t][fi[1]], model.tets[t][fi[2]]}));
+      const auto it = tet_of.find(face_key({model.tets[t][fi[0]], model.tets[t][fi[1]], model.tets[t][fi[2]]}));
       if (it != tet_of.end()) it->second = static_cast<std::int64_t>(t);
     }
 
   const InitialState& init = model.initial;
   for (const auto& [spec, tris] : loaded) {
     for (const auto& tri : tris) {
-      const std::int64_t t = tet_of.at(sorted(tri));
+      const std::int64_t t = tet_of.at(face_key(tri));
       if (t < 0)
         throw InputError(spec->where, fmt::format("boundary_traction: a triangle of bnd:{} (nodes {}, {}, {}) is no face of a "
                                                   "tetrahedron (expected the model's outer surface)", spec->group,
