@@ -127,5 +127,9 @@ print("change of raw max chi between FAULT_H = %s and %s m: " % (a, b)
       + ", ".join(f"{f} {raw[f]:.3f}" for f in faults))
 print("change away from the corners (the criterion, < 0.05): "
       + ", ".join(f"{f} {acc[f]:.3f}" for f in faults) + f"; largest {max(acc.values()):.3f}")
+# Key metrics for bench/run-all (RESULTS.md, history.csv).
+print(f"metric: fault-convergence.max_chi_change_away_from_corners {max(acc.values()):.4f} 1")
+for h in hs:
+    print(f"metric: fault-convergence.h{h}.wall {info[h][2]} s")
 sys.exit(0 if max(acc.values()) < 0.05 else 1)
 EOF

@@ -30,6 +30,7 @@
 #include "ugs/meshing/fault_insert.hpp"
 #include "ugs/meshing/fault_select.hpp"
 #include "ugs/meshing/fault_traces.hpp"
+#include "layered_case.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
@@ -62,40 +63,14 @@ std::string material(const Point3& c) {
   return r < kRx ? "pool" : r < kAq ? "aquifer" : "rock";
 }
 
-Mesh submesh(const Mesh& m) {
-  Mesh s;
-  std::vector<std::int64_t> local(m.num_nodes(), -1);
-  for (const auto& b : m.blocks) {
-    if (b.type != ElementType::Tetrahedron) continue;
-    const std::string g = m.physical_name_of(b.entity_dim, b.entity_tag);
-    if (g != "mat:pool" && g != "mat:aquifer") continue;
-    const int e = s.entity_for_physical(3, g);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      std::uint32_t n[4];
-      const auto el = b.element(i);
-      for (int k = 0; k < 4; ++k) {
-        if (local[el[k]] < 0) local[el[k]] = s.add_node(m.nodes[el[k]], m.node_tags[el[k]]);
-        n[k] = static_cast<std::uint32_t>(local[el[k]]);
-      }
-      s.add_element(s.block(3, e, ElementType::Tetrahedron), n, b.tags[i]);
-    }
-  }
-  s.update_entity_bboxes();
-  return s;
-}
-
 void write_flow(const Mesh& m, const fs::path& path) {
-  const Mesh sub = submesh(m);
-  FieldSeriesWriter w(path.string(), sub);
-  for (int k = 0; k <= 6; ++k) {
-    const std::string date = fmt::format("2015-{:02d}-01", 5 + k);
-    const double pool = (-6.0 + 5.0 * k / 6.0) * 1e6;
-    Field f{"dp", 1, std::vector<double>(sub.num_nodes())};
-    for (std::size_t v = 0; v < sub.num_nodes(); ++v) f.values[v] = pool * std::exp(-std::max(0.0, radius(sub.nodes[v]) - kRx) / 1000.0);
-    const Field nodes[] = {f};
-    w.add_step(date, static_cast<double>(*parse_iso_date(date)), nodes);
-  }
-  w.commit();
+  cases::Series s;
+  for (int k = 0; k <= 6; ++k) s.dates.push_back(fmt::format("2015-{:02d}-01", 5 + k));
+  s.dp = [](const Point3& x, std::size_t k) {
+    const double pool = (-6.0 + 5.0 * static_cast<double>(k) / 6.0) * 1e6;
+    return pool * std::exp(-std::max(0.0, radius(x) - kRx) / 1000.0);
+  };
+  cases::write_pressure(path, cases::submesh(m, {"pool", "aquifer"}), s);
 }
 
 std::string case_text(bool faults) {

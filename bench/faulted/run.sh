@@ -16,7 +16,7 @@ NP=${3:-2}
 shift $(( $# < 3 ? $# : 3 ))
 [ "${1:-}" = "--" ] && shift
 TOOL=$B/tools/ugs-solve/ugs-solve
-GEN=$B/tests/contact/make_faulted_bench
+GEN=$B/bench/make_faulted_bench
 mkdir -p "$W"
 [ -f "$W/faulted.msh" ] && [ -f "$W/plain.msh" ] && [ -f "$W/flow.h5" ] || "$GEN" "$W"
 
@@ -44,4 +44,6 @@ awk -v a="$t0" -v b="$t1" -v c="$t2" -v np="$NP" 'BEGIN {
   printf "faulted ugs-solve, %d processes:      %.1f s (target < 600 s)\n", np, f
   printf "peer: continuous ugs-solve, same mesh: %.1f s\n", p
   printf "ratio faulted / continuous: %.2f\n", f / p
+  printf "metric: ugs-solve.faulted.wall %.1f s\nmetric: ugs-solve.continuous.wall %.1f s\n", f, p
+  printf "metric: faulted.ratio_to_continuous %.2f 1\n", f / p
   exit !(f < 600) }' || { echo "FAIL: over 10 minutes"; exit 1; }

@@ -12,7 +12,7 @@ set -eu
 B=${1:?usage: run.sh BUILD_DIR [WORK_DIR]}
 W=${2:-$B/bench-faultinsert}
 TOOL=$B/tools/ugs-faultinsert/ugs-faultinsert
-GEN=$B/tests/faults/make_faultinsert_bench
+GEN=$B/bench/make_faultinsert_bench
 mkdir -p "$W"
 [ -f "$W/groups.msh" ] && [ -f "$W/plain.msh" ] && [ -f "$W/faults.geojson" ] || "$GEN" "$W"
 
@@ -46,4 +46,7 @@ if [ -n "$t_gmsh" ]; then
   awk -v a="$t_groups" -v b="$t_traces" -v g="$t_gmsh" \
     'BEGIN { printf "ratio to gmsh: %.2f (groups), %.2f (traces)\n", a / g, b / g }'
 fi
+echo "metric: ugs-faultinsert.groups.wall $t_groups s"
+echo "metric: ugs-faultinsert.traces.wall $t_traces s"
+[ -n "$t_gmsh" ] && echo "metric: gmsh.read_write.wall $t_gmsh s"
 awk -v a="$t_groups" 'BEGIN { exit !(a < 3.0) }' || { echo "FAIL: over 3 s"; exit 1; }

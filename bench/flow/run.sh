@@ -25,9 +25,16 @@ have_meshgen=0
 cmake --build "$build" --target ugs-mesh2d ugs-meshgen >/dev/null 2>&1 && have_meshgen=1
 
 echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), BLAS $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3)"
-timed() {  # label, command...: prints the tool's summary lines and "label: wall, user, sys, RSS"
+timed() {  # label, command...: prints the tool's summary lines, "label: wall, user, sys, RSS" and its metric lines
   local label=$1; shift
-  /usr/bin/time -f "$label: wall %e s, user %U s, sys %S s, max RSS %M kB" "$@" 2>&1 | grep -v " flow [0-9]*/"
+  local rc=0
+  /usr/bin/time -f "$label: wall %e s, user %U s, sys %S s, max RSS %M kB" "$@" 2>&1 | grep -v " flow [0-9]*/" | tee "$work/timed.out" || rc=$?
+  # "ugs-flow (real, one output date)" -> metric names ugs-flow.real_one_output_date.wall etc.
+  local key
+  key=$(sed -E 's/ \((.*)\)$/.\1/; s/[^A-Za-z0-9.-]+/_/g' <<< "$label")
+  sed -nE "s/^.*: wall ([0-9.]+) s, user ([0-9.]+) s, sys ([0-9.]+) s, max RSS ([0-9]+) kB\$/\1 \2 \3 \4/p" "$work/timed.out" | tail -1 |
+    awk -v k="$key" '{ printf "metric: %s.wall %s s\nmetric: %s.cpu %.2f s\nmetric: %s.rss %.0f MB\n", k, $1, k, $2 + $3, k, $4 / 1024 }'
+  return $rc
 }
 
 if [[ $have_meshgen == 1 ]]; then
@@ -51,7 +58,7 @@ if [[ $have_meshgen == 1 ]]; then
   timed "ugs-flow (real, one output date)" "$build/tools/ugs-flow/ugs-flow" "$real/pool_c.msh" --case "$real/case.toml" \
     -o "$real/one.h5" --output-dates 1964-01-01 -v || true
   if [[ ${SKIP_PEER:-0} != 1 ]]; then
-    "$build/tests/flow/flow_bench_case" --raw "$real/pool_c.msh" pool_c "$real"
+    "$build/bench/flow_bench_case" --raw "$real/pool_c.msh" pool_c "$real"
     timed "peer scipy (real)" /usr/bin/python3 "$here/peer_scipy.py" "$real"
   fi
 fi
@@ -59,7 +66,7 @@ fi
 if [[ ${SKIP_BOX:-0} != 1 ]]; then
   echo "== box: 114 x 114 x 11 nodes"
   box=$work/box
-  "$build/tests/flow/flow_bench_case" "$box" 114 "$sample/pressure_pool_c.csv"
+  "$build/bench/flow_bench_case" "$box" 114 "$sample/pressure_pool_c.csv"
   cp "$sample/pressure_pool_c.csv" "$box/"
   rm -f "$box"/dp.*
   timed "ugs-flow (box)" "$build/tools/ugs-flow/ugs-flow" "$box/mesh.msh" --case "$box/case.toml" -o "$box/dp.h5" -v

@@ -5,7 +5,7 @@
 #   bench/import-eclipse/run.sh [BUILD_DIR]     (default BUILD_DIR: build)
 #   BENCH_ECLIPSE_SIZE="NX NY NZ STEPS HX HY HZ" overrides the case (default 100 100 100 100 80 80 78)
 #
-# The case comes from tests/eclipse/make_bench_case.cpp: a 100 x 100 x 100 corner-point grid
+# The case comes from bench/import-eclipse/make_bench_case.cpp: a 100 x 100 x 100 corner-point grid
 # (980,000 active cells), a restart written in the ECLIPSE binary format, and a box of 80 x 80 x 78
 # hexahedra split into 2,995,200 tetrahedra half inside the grid. No other tool maps simulator
 # pressures onto a tetrahedral mesh (ResInsight reads the files but computes no mapping), so the
@@ -17,7 +17,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
 tool=$build/tools/ugs-import-eclipse/ugs-import-eclipse
-gen=$build/tests/eclipse/eclipse_make_bench_case
+gen=$build/bench/eclipse_make_bench_case
 for f in "$tool" "$gen"; do
   [[ -x $f ]] || { echo "run.sh: error: $f not built" >&2; exit 2; }
 done
@@ -45,3 +45,7 @@ echo
 echo "Split (the tool's -v line): $timing."
 echo "Per step: $per_step s, of which EclIO reading PRESSURE (the floor any importer pays) $read_per_step s."
 echo "Load average when it started: $load (the CPU time is what an idle machine's wall time approaches)."
+awk -v w="$wall" -v u="$user" -v s="$sys" -v r="$rss" -v p="$per_step" 'BEGIN {
+  printf "metric: ugs-import-eclipse.wall %.2f s\nmetric: ugs-import-eclipse.cpu %.2f s\n", w, u + s
+  printf "metric: ugs-import-eclipse.rss %.0f MB\n", r / 1024
+  if (p != "") printf "metric: ugs-import-eclipse.per_step %s s\n", p }'

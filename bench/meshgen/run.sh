@@ -82,3 +82,9 @@ echo
 awk -v a="$gm_wall" -v b="$mg_wall" -v c="$gm_cpu" -v d="$mg_cpu" \
   'BEGIN { printf "ugs-meshgen vs gmsh: %.1fx faster (wall), %.1fx (CPU)\n", a / b, c / d }'
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
+# Key metrics for bench/run-all (RESULTS.md, history.csv).
+for m in "ugs-mesh2d $m2_wall $m2_cpu $m2_rss" "ugs-meshgen $mg_wall $mg_cpu $mg_rss" "gmsh-extrusion $gm_wall $gm_cpu $gm_rss"; do
+  read -r tool w c r <<< "$m"
+  printf 'metric: %s.wall %s s\nmetric: %s.cpu %s s\nmetric: %s.rss %s MB\n' "$tool" "$w" "$tool" "$c" "$tool" "$r"
+done
+awk -v a="$gm_wall" -v b="$mg_wall" 'BEGIN { printf "metric: meshgen.speedup_wall %.2f 1\n", a / b }'

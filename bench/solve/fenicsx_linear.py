@@ -4,7 +4,7 @@ python3-dolfinx-real), PETSc CG + GAMG with the rigid-body near-null space, same
 
     mpirun -n 2 /usr/bin/python3 fenicsx_linear.py CASE_DIR [OUT.xdmf]
 
-CASE_DIR is written by `mech_make_case thesis DIR --linear`: mesh_arrays.h5 holds the very mesh of
+CASE_DIR is written by `make_thesis_case DIR --linear` (bench/solve): mesh_arrays.h5 holds the very mesh of
 mesh.msh (coordinates, tetrahedra; same node order). Physics as in ugs-solve's case.toml there:
 isotropic elasticity, nu = 0.3, E per element from c_M = 1.0044e-2 sigma^-1.1347 (1/MPa) at the
 initial effective vertical stress sigma = (0.0226 - 0.0100) MPa/m x (50 m - z_centroid), at least

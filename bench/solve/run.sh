@@ -17,7 +17,7 @@
 #    same scale on 2 processes, stepped on its turning points. Target: under 30 min, under 8 GB.
 #    HISTORY_SAMPLE=1 and HISTORY_STEPS=N time monthly steps instead and project an every-date run.
 #
-# The model (tests/mechanics/mech_make_case thesis): the layered box of the thesis — 42 x 30 km,
+# The model (bench/solve/make_thesis_case.cpp): the layered box of the thesis — 42 x 30 km,
 # bottom -10 km, the surfaces of Table 4.1 with their 41 sub-layers (2 m under Pool C), plan spacing
 # 50 m over the reservoirs growing to ~2 km — standing in for ugs-meshgen's output of the same size.
 # Linear case: elastic units, c_M of eq. 4.1 at the initial stress, Pool C depleted by 10 MPa.
@@ -31,9 +31,9 @@ work=${2:-/tmp/ugs-bench-solve}
 scale=${SCALE:-1}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpirun="mpirun -n 2 --oversubscribe"
-cmake --build "$build" --target ugs-solve mech_make_case >/dev/null
+cmake --build "$build" --target ugs-solve make_thesis_case >/dev/null
 solve=$build/tools/ugs-solve/ugs-solve
-make_case=$build/tests/mechanics/mech_make_case
+make_case=$build/bench/make_thesis_case
 
 echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg) (shared: compare lines of one run, not runs)"
 now() { date +%s.%N; }
@@ -44,15 +44,17 @@ lin=$work/linear
 if [[ ${SKIP_LINEAR:-0} != 1 ]]; then
   mkdir -p "$lin"
   if [[ ! -f $lin/mesh.msh || "$(cat "$lin/.scale" 2>/dev/null)" != "$scale" ]]; then
-    "$make_case" thesis "$lin" --linear --scale "$scale" 2>&1
+    "$make_case" "$lin" --linear --scale "$scale" 2>&1
     echo "$scale" > "$lin/.scale"
   fi
   echo "== linear: ugs-solve, 2 processes"
   t0=$(now)
   /usr/bin/time -f "ugs-solve: max RSS %M kB (largest process)" $mpirun "$solve" "$lin/mesh.msh" --case "$lin/case.toml" \
-    --pressure "$lin/flow.h5" -o "$lin/ugs.h5" -v 2>&1 | grep -E "linear iterations,|time:|KSP|RSS" | sed 's/^ugs-solve: /ugs-solve: /'
+    --pressure "$lin/flow.h5" -o "$lin/ugs.h5" -v 2>&1 | grep -E "linear iterations,|time:|KSP|RSS" | tee "$work/ugs_linear.out"
   t_ugs=$(secs "$t0" "$(now)")
   echo "ugs-solve: wall $t_ugs s"
+  echo "metric: ugs-solve.linear.wall $t_ugs s"
+  sed -n 's/^ugs-solve: max RSS \([0-9]*\) kB.*/\1/p' "$work/ugs_linear.out" | awk '{ printf "metric: ugs-solve.linear.rss_largest %.0f MB\n", $1 / 1024 }' 
   /usr/bin/python3 -c "
 import h5py; h = h5py.File('$lin/ugs.h5'); s = sorted(h['steps'])[-1]; u = h['steps'][s]['node']['u'][:]
 print(f'ugs-solve: min u_z {u[:, 2].min() * 1e3:.4f} mm')"
@@ -60,15 +62,18 @@ print(f'ugs-solve: min u_z {u[:, 2].min() * 1e3:.4f} mm')"
     dpkg -l python3-dolfinx-real >/dev/null 2>&1 || { echo "FEniCSx (python3-dolfinx-real) is not installed"; exit 1; }
     # FFCx compiles the forms on first use: warm its cache on a tiny model so the peer is not charged.
     mkdir -p "$work/warm"
-    [[ -f $work/warm/mesh_arrays.h5 ]] || "$make_case" thesis "$work/warm" --linear --scale 0.01 >/dev/null 2>&1
+    [[ -f $work/warm/mesh_arrays.h5 ]] || "$make_case" "$work/warm" --linear --scale 0.01 >/dev/null 2>&1
     /usr/bin/python3 "$here/fenicsx_linear.py" "$work/warm" >/dev/null 2>&1 || true
     echo "== linear: FEniCSx 0.5, 2 processes"
     t0=$(now)
     /usr/bin/time -f "fenicsx: max RSS %M kB (largest process)" $mpirun /usr/bin/python3 "$here/fenicsx_linear.py" "$lin" \
-      "$lin/fenicsx_u.xdmf" 2>&1 | grep -E "^fenicsx"
+      "$lin/fenicsx_u.xdmf" 2>&1 | grep -E "^fenicsx" | tee "$work/fenicsx_linear.out"
     t_fx=$(secs "$t0" "$(now)")
     echo "fenicsx: wall $t_fx s"
     echo "linear: FEniCSx / ugs-solve = $(echo "scale=2; $t_fx / $t_ugs" | bc) (target >= 2)"
+    echo "metric: fenicsx.linear.wall $t_fx s"
+    sed -n 's/^fenicsx: max RSS \([0-9]*\) kB.*/\1/p' "$work/fenicsx_linear.out" | awk '{ printf "metric: fenicsx.linear.rss_largest %.0f MB\n", $1 / 1024 }'
+    echo "metric: solve.linear.speedup_vs_fenicsx $(echo "scale=2; $t_fx / $t_ugs" | bc) 1"
   fi
 fi
 
@@ -77,7 +82,7 @@ if [[ ${SKIP_HISTORY:-0} != 1 ]]; then
   his=$work/history
   mkdir -p "$his"
   if [[ ! -f $his/mesh.msh || "$(cat "$his/.scale" 2>/dev/null)" != "$scale" ]]; then
-    "$make_case" thesis "$his" --history --scale "$scale" 2>&1
+    "$make_case" "$his" --history --scale "$scale" 2>&1
     echo "$scale" > "$his/.scale"
   fi
   args=("$his/mesh.msh" --case "$his/case.toml" --pressure "$his/flow_pool_a.h5" --pressure "$his/flow_pool_c.h5")
@@ -107,6 +112,7 @@ n_stor = len(dates) - 1 - n_prod
 t = n_prod * sum(prod) / len(prod) + n_stor * sum(stor) / len(stor)
 print(f"history: production {sum(prod) / len(prod):.1f} s/step x {n_prod}, storage {sum(stor) / len(stor):.1f} s/step x {n_stor}: "
       f"projected 1950-2033 {t:.0f} s (target < 1800 s)")
+print(f"metric: ugs-solve.history_sample.projected_wall {t:.0f} s")
 PY
   elif [[ -n ${HISTORY_STEPS:-} ]]; then
     # Production 1950-1964 first (state saved), then N months of storage cycles timed from a restart.
@@ -121,6 +127,7 @@ PY
       --restart "$his/prod_state.h5" --until "$until_date" -v 2>&1 | grep -E "[0-9]+ steps:|time:|RSS"
     t=$(secs "$t0" "$(now)")
     echo "ugs-solve (cycles): wall $t s for $HISTORY_STEPS steps: $(echo "scale=2; $t / $HISTORY_STEPS" | bc) s per step"
+    echo "metric: ugs-solve.history_cycles.per_step $(echo "scale=2; $t / $HISTORY_STEPS" | bc) s"
   else
     # The whole history on its turning points ([solver] steps = "turning-points", docs/mechanics.md):
     # the dates where some element's pressure change reaches a new low and turns back, the output
@@ -151,6 +158,8 @@ PY
     kill "$sampler" 2>/dev/null || true
     echo "ugs-solve (history): wall $t s (target < 1800 s)"
     echo "ugs-solve (history): peak resident memory of the 2 processes together $(awk '{printf "%.2f", $1 / 1048576}' "$rss_log") GB (target < 8 GB)"
+    echo "metric: ugs-solve.history.wall $t s"
+    awk '{ printf "metric: ugs-solve.history.rss_total %.2f GB\n", $1 / 1048576 }' "$rss_log"
   fi
 fi
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

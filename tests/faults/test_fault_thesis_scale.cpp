@@ -17,7 +17,7 @@ namespace {
 
 TEST(FaultThesisScale, ChecksHoldOnTheBenchmarkCase) {
   const auto dir = temp_dir("fault-thesis-scale");
-  const std::string gen = std::string(UGS_BINARY_DIR) + "/tests/faults/make_faultinsert_bench " + dir.string();
+  const std::string gen = std::string(UGS_BINARY_DIR) + "/bench/make_faultinsert_bench " + dir.string();
   ASSERT_EQ(run(gen).exit_code, 0);
   const Mesh input = read_msh((dir / "groups.msh").string());
   Mesh m = input;
