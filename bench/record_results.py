@@ -5,7 +5,7 @@ their metrics to the history CSV.
     record_results.py RUNS_DIR RESULTS.md HISTORY.csv
 
 RUNS_DIR holds one folder per benchmark run: `output` (what its run.sh printed) and `meta` (key=value
-lines: date, commit, dirty, load_before, load_after, machine, result, seconds). A run.sh reports a
+lines: date, commit, dirty, load_before, load_after, machine, settings, result, seconds). A run.sh reports a
 key metric as a line `metric: NAME VALUE UNIT` (NAME without spaces, VALUE a number, UNIT one word;
 `1` for ratios and counts); those lines become the section's metric table and one history row each.
 RESULTS.md keeps the sections of benchmarks not in RUNS_DIR as they were: each section carries its
@@ -28,7 +28,7 @@ changes), the machine and its load average before and after. `BENCH_ONLY=...` re
 keeps the others with their own date and commit. Every run's metrics are also appended to
 `{history}`, one row per metric, so that a regression shows.
 """
-HISTORY_COLUMNS = ["date", "commit", "dirty", "load", "benchmark", "status", "metric", "value", "unit"]
+HISTORY_COLUMNS = ["date", "commit", "dirty", "load", "benchmark", "status", "metric", "value", "unit", "settings"]
 METRIC = re.compile(r"^metric: (\S+) (\S+) (\S+)\s*$")
 
 
@@ -81,6 +81,9 @@ def section(name, meta, lines, metrics):
     out = [f"<!-- bench: {name} -->", f"## {name}", "",
            f"{meta['result']}, {meta['seconds']} s; {meta['date']}; commit {meta['commit']}{dirty}; "
            f"load {meta['load_before']} before, {meta.get('load_after', '?')} after; {meta['machine']}.", ""]
+    if meta.get("settings"):
+        out[-1:-1] = [f"Settings: `{meta['settings']}`."]
+        out.insert(-1, "")
     if metrics:
         out += ["| metric | value | unit |", "|---|---|---|"]
         out += [f"| {m} | {v} | {u} |" for m, v, u in metrics]
@@ -143,7 +146,8 @@ def main(argv):
         sections[name] = section(name, meta, lines, metrics)
         status = "ok" if meta["result"] == "ok" else "failed"
         load = meta["load_before"].split()[0] if meta["load_before"].split() else ""
-        rows += [[meta["date"], meta["commit"], meta["dirty"], load, name, status, m, v, u] for m, v, u in metrics]
+        rows += [[meta["date"], meta["commit"], meta["dirty"], load, name, status, m, v, u, meta.get("settings", "")]
+                 for m, v, u in metrics]
 
     text = HEADER.format(history=os.path.relpath(history, os.path.dirname(os.path.abspath(results))))
     for name in sorted(sections):

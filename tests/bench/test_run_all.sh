@@ -12,6 +12,10 @@ fails=0 passes=0
 check() {  # description, command...
   if "${@:2}"; then echo "ok: $1"; passes=$((passes + 1)); else echo "FAIL: $1"; fails=$((fails + 1)); fi
 }
+# The settings run-all records come from the environment: start from none.
+for v in $(compgen -e | grep -E '^(BENCH_[A-Z_]+|SCALE|SKIP_[A-Z_]+|EVERY_DATE|HISTORY_[A-Z_]+|TURNING_TOLERANCE|FAULT_[A-Z_]+|NO_SCALE|CORNER_M|REAL_MODEL)$'); do
+  unset "$v"
+done
 section() { sed -n "/^<!-- bench: $1 -->\$/,/^<!-- end bench: $1 -->\$/p" "$work/RESULTS.md"; }
 
 mkdir -p "$work/benches/alpha" "$work/benches/beta"
@@ -23,8 +27,8 @@ echo "metric: alpha.wall 1.25 s"
 echo "metric: alpha.rss 364 MB"
 SH
 cat > "$work/benches/beta/run.sh" <<'SH'
-echo "beta: speed-up ${BETA:-2.0}"
-echo "metric: beta.speedup ${BETA:-2.0} 1"
+echo "beta: speed-up ${BENCH_BETA:-2.0}"
+echo "metric: beta.speedup ${BENCH_BETA:-2.0} 1"
 exit ${BETA_EXIT:-0}
 SH
 commit=$(git -C "$src" rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
@@ -41,21 +45,22 @@ check "alpha's own output kept, metric lines taken out" \
   test "$(section alpha | grep -c '^| alpha | 1.25 |$')-$(section alpha | grep -c '^metric:')" = "1-0"
 check "the section names the commit $commit" grep -q "^ok, [0-9]* s; [0-9-]*T[0-9:]*Z; commit $commit" <(section beta)
 check "history: header and 3 rows" test "$(wc -l < "$work/history.csv")" = 4
-check "history header" test "$(head -1 "$work/history.csv")" = "date,commit,dirty,load,benchmark,status,metric,value,unit"
-check "history row of beta" grep -Eq "^[0-9-]+T[0-9:]+Z,$commit,(yes|no|unknown),[0-9.]+,beta,ok,beta.speedup,2.0,1\$" "$work/history.csv"
+check "history header" test "$(head -1 "$work/history.csv")" = "date,commit,dirty,load,benchmark,status,metric,value,unit,settings"
+check "history row of beta" grep -Eq "^[0-9-]+T[0-9:]+Z,$commit,(yes|no|unknown),[0-9.]+,beta,ok,beta.speedup,2.0,1,\$" "$work/history.csv"
 alpha_before=$(section alpha)
 head_before=$(head -4 "$work/history.csv")
 
 # 2. beta alone, slower and failing: alpha kept as it was, beta replaced, one history row appended
 sleep 1
-BETA=3.5 BETA_EXIT=1 BENCH_ONLY=beta run_all; rc=$?
+BENCH_BETA=3.5 BETA_EXIT=1 BENCH_ONLY=beta run_all; rc=$?
 check "a failed benchmark makes run-all exit 1" test "$rc" = 1
 check "alpha's section kept byte for byte" test "$alpha_before" = "$(section alpha)"
 check "beta's section replaced" test "$(section beta | grep -c '^| beta.speedup | 3.5 | 1 |$')-$(section beta | grep -c '2.0')" = "1-0"
 check "beta recorded as failed" grep -q '^failed (exit 1), ' <(section beta)
 check "still two sections" test "$(grep -c '^<!-- bench: ' "$work/RESULTS.md")" = 2
 check "history: old rows kept, one appended" test "$(head -4 "$work/history.csv")" = "$head_before" -a "$(wc -l < "$work/history.csv")" = 5
-check "appended row: beta failed at 3.5" grep -Eq ",beta,failed,beta.speedup,3.5,1\$" <(tail -1 "$work/history.csv")
+check "appended row: beta failed at 3.5, with its setting" grep -Eq ",beta,failed,beta.speedup,3.5,1,BENCH_BETA=3.5\$" <(tail -1 "$work/history.csv")
+check "the section names its setting" grep -qx 'Settings: `BENCH_BETA=3.5`.' <(section beta)
 
 # 3. a BENCH_ONLY that names no benchmark: exit 2, files untouched
 cp "$work/RESULTS.md" "$work/before.md"
