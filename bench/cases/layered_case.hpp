@@ -1,5 +1,5 @@
-// Synthetic ugs-solve cases on box meshes: the pieces that the test cases (tests/mechanics,
-// mech_make_case) and the benchmark cases (bench/solve, make_thesis_case) share — a sub-mesh of some
+// Synthetic ugs-solve cases on box meshes: the pieces that the test case writers (mech_make_case,
+// contact_make_case) and the benchmark case writers (make_thesis_case, make_faulted_bench) share — a sub-mesh of some
 // materials as ugs-submesh writes it, the pressure-change series that ugs-flow would write for a
 // pool, and the layered model with two hypo-plastic pools and their lagging aquifers.
 #pragma once

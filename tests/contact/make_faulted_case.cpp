@@ -21,6 +21,7 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
+#include "layered_case.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
@@ -28,26 +29,6 @@ namespace fs = std::filesystem;
 namespace {
 
 bool in_reservoir(const Point3& c) { return c[0] > 350 && c[0] < 850 && c[1] > 150 && c[1] < 450 && c[2] > -600 && c[2] < -450; }
-
-Mesh submesh(const Mesh& m, const std::string& group) {
-  Mesh s;
-  std::vector<std::int64_t> local(m.num_nodes(), -1);
-  for (const auto& b : m.blocks) {
-    if (b.type != ElementType::Tetrahedron || m.physical_name_of(b.entity_dim, b.entity_tag) != group) continue;
-    const int e = s.entity_for_physical(3, group);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      std::uint32_t n[4];
-      const auto el = b.element(i);
-      for (int k = 0; k < 4; ++k) {
-        if (local[el[k]] < 0) local[el[k]] = s.add_node(m.nodes[el[k]], m.node_tags[el[k]]);
-        n[k] = static_cast<std::uint32_t>(local[el[k]]);
-      }
-      s.add_element(s.block(3, e, ElementType::Tetrahedron), n, b.tags[i]);
-    }
-  }
-  s.update_entity_bboxes();
-  return s;
-}
 
 }  // namespace
 
@@ -116,7 +97,7 @@ linear_solver = "mumps"
 {})",
                                                   cohesion, friction, extra);
 
-  const Mesh sub = submesh(m, "mat:reservoir");
+  const Mesh sub = cases::submesh(m, {"reservoir"});
   FieldSeriesWriter w((dir / "flow.h5").string(), sub);
   const char* dates[] = {"2000-01-01", "2001-01-01"};
   for (int k = 0; k < 2; ++k) {
