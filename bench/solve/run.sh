@@ -54,7 +54,7 @@ if [[ ${SKIP_LINEAR:-0} != 1 ]]; then
   t_ugs=$(secs "$t0" "$(now)")
   echo "ugs-solve: wall $t_ugs s"
   echo "metric: ugs-solve.linear.wall $t_ugs s"
-  sed -n 's/^ugs-solve: max RSS \([0-9]*\) kB.*/\1/p' "$work/ugs_linear.out" | awk '{ printf "metric: ugs-solve.linear.rss_largest %.0f MB\n", $1 / 1024 }' 
+  sed -n 's/^ugs-solve: max RSS \([0-9]*\) kB.*/\1/p' "$work/ugs_linear.out" | awk '{ printf "metric: ugs-solve.linear.rss_largest %.0f MB\n", $1 / 1024 }'
   /usr/bin/python3 -c "
 import h5py; h = h5py.File('$lin/ugs.h5'); s = sorted(h['steps'])[-1]; u = h['steps'][s]['node']['u'][:]
 print(f'ugs-solve: min u_z {u[:, 2].min() * 1e3:.4f} mm')"
