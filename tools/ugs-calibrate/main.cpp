@@ -54,26 +54,6 @@ struct Options {
   int max_evals = 60;
 };
 
-MisfitWindow parse_window(const std::string& text) {
-  MisfitWindow w;
-  if (text.empty()) return w;
-  const auto slash = text.find('/');
-  if (slash == std::string::npos) throw InputError("--window", fmt::format("'{}' is not START/END (ISO dates)", text));
-  const std::string a = text.substr(0, slash), b = text.substr(slash + 1);
-  if (!a.empty()) {
-    const auto t = parse_iso_date(a);
-    if (!t) throw InputError("--window", fmt::format("'{}' is not an ISO 8601 date", a));
-    w.start = *t;
-  }
-  if (!b.empty()) {
-    const auto t = parse_iso_date(b);
-    if (!t) throw InputError("--window", fmt::format("'{}' is not an ISO 8601 date", b));
-    w.end = *t;
-  }
-  if (w.start > w.end) throw InputError("--window", fmt::format("'{}': start after end", text));
-  return w;
-}
-
 std::string fmt_value(double v) { return fmt::format("{:.6g}", v); }
 
 }  // namespace
@@ -126,7 +106,7 @@ int main(int argc, char** argv) {
     // system's temporary folder: the cache is created only once every input is accepted).
     for (const auto& w : check_parameters(tmpl, params)) cli::warning("{}", w);
     const std::string cache_dir = o.cache_dir.empty() ? output + ".cache" : o.cache_dir;
-    const MisfitWindow window = parse_window(o.window);
+    const MisfitWindow window = parse_window(o.window, "--window");
 
     // 2. Measured series at the chosen points, in the model CRS.
     PsReadOptions ro;
