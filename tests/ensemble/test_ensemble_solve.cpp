@@ -13,6 +13,8 @@
 #include "ugs/ensemble/metrics.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/insar/case_params.hpp"
+#include "ugs/insar/inputs.hpp"
+#include "ugs/insar/ps_data.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
@@ -34,8 +36,7 @@ upper = 0.05
 )";
 
 fs::path make_box() {
-  const fs::path dir = test::temp_dir("ensemble-solve");
-  test::write_solve_box(dir, 3.0, 5.0);
+  const fs::path dir = test::make_truth("ensemble-solve");  // the box, a truth run and its noisy PS series up.csv
   test::spit(dir / "case.toml", test::slurp(dir / "case.toml") + "\n[scenario]\nscale_tolerance = 0.01\n");
   return dir;
 }
@@ -43,7 +44,8 @@ fs::path make_box() {
 std::string ens_cmd(const fs::path& dir, const std::string& mode, const std::string& spec, const std::string& extra) {
   return test::tool("ugs-ensemble") + " " + mode + " --spec " + (dir / spec).string() + " --case " + (dir / "case.toml").string() +
          " --mesh " + (dir / "model.msh").string() + " --solver-command '" + test::solver_command(dir) +
-         "' --phase storage=2013-05-01/2013-11-01 " + extra;
+         "' --phase storage=2013-05-01/2013-11-01 --measured " + (dir / "up.csv").string() +
+         " --window 2009-01-01/2014-12-31 " + extra;
 }
 
 // The table's data lines (comments, which hold the command line, left out).
@@ -81,6 +83,15 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   std::printf("mu*(uplift, c_R) = %.4f mm, mu*(uplift, scale_tolerance) = %g\n",
               mu_star.at("uplift_max_mm.storage|material.pool_c.c_R"), mu_star.at("uplift_max_mm.storage|scenario.scale_tolerance"));
 
+  // The fan charts' data: 11 PS points at every PS date of the results, the band ordered.
+  const CsvTable ps = CsvTable::read((dir / "out" / "ps_series.csv").string());
+  ASSERT_GT(ps.rows(), 11u);
+  for (std::size_t i = 0; i < ps.rows(); ++i) {
+    EXPECT_EQ(ps.integer(i, ps.column("n")), 9);
+    EXPECT_LE(ps.number(i, ps.column("p10_mm")), ps.number(i, ps.column("p50_mm")));
+    EXPECT_LE(ps.number(i, ps.column("p50_mm")), ps.number(i, ps.column("p90_mm")));
+  }
+
   // 2. A member equals a single ugs-solve run with its parameters, bit for bit.
   const CsvTable mem = CsvTable::read((dir / "out" / "members.csv").string());
   ASSERT_EQ(mem.rows(), 9u);
@@ -97,8 +108,13 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   ASSERT_EQ(test::run(cmd).exit_code, 0);
   ensemble::MetricOptions mo;
   mo.phases.push_back(ensemble::parse_phase("storage=2013-05-01/2013-11-01"));
+  insar::PsReadOptions ro;
+  ro.model_crs = insar::model_crs("", (dir / "case.toml").string());
+  mo.ps = insar::read_ps((dir / "up.csv").string(), ro);
+  mo.window = insar::parse_window("2009-01-01/2014-12-31", "--window");
   const ensemble::Metrics single = ensemble::member_metrics((dir / "single").string(), mo);
-  ASSERT_FALSE(single.empty());
+  ASSERT_EQ(single.size(), 5u);  // uplift, settlement, at the PS points too, and the misfit
+  EXPECT_EQ(single.back().first, "insar_rms_mm");
   for (const auto& [name, v] : single) EXPECT_EQ(mem.number(0, mem.column(name)), v) << name;
 
   // 3. A rerun runs nothing and writes the same bytes.
@@ -107,7 +123,7 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(std::count(again.err.begin(), again.err.end(), '\n') >= 9, true);
   EXPECT_EQ(again.err.find(" s\n"), std::string::npos) << again.err;  // no member timed: all cached
-  for (const char* f : {"members.csv", "quantiles.csv", "morris.csv", "failures.csv", "exceedance.csv"})
+  for (const char* f : {"members.csv", "quantiles.csv", "morris.csv", "failures.csv", "exceedance.csv", "ps_series.csv"})
     EXPECT_EQ(data_lines(dir / "out" / f), data_lines(dir / "out2" / f)) << f;
 
   // 4. The emitted Makefile, run by make into a fresh cache, reproduces a local run.

@@ -1,6 +1,7 @@
 #include "ugs/ensemble/collect.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -24,6 +25,7 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
   const fs::path out(out_dir);
   // 1. Each member's metrics; the metric names in first-seen order (members in design order).
   std::vector<std::optional<Metrics>> metrics(n);
+  std::vector<MemberOutputs> series(n);
   std::vector<std::string> errors(n);
   std::vector<std::string> names;
   std::map<std::string, std::size_t> column;
@@ -34,7 +36,8 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
       continue;
     }
     try {
-      metrics[k] = member_metrics(members.folder(k), options);
+      series[k] = member_outputs(members.folder(k), options);
+      metrics[k] = series[k].metrics;
     } catch (const InputError& e) {
       errors[k] = fmt::format("member {}: {}", k + 1, e.what());
       continue;
@@ -113,6 +116,34 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
       if (dot != std::string::npos && parse_iso_date(fault.substr(dot + 1))) continue;
       const auto v = values_of(m);
       w.text(fault).integer(static_cast<std::int64_t>(v.size())).number(exceedance(v, 0.8)).number(exceedance(v, 1.0)).end_row();
+    }
+    w.commit();
+  }
+  // The fan charts' data: quantiles of the simulated series at each PS point and date, beside the
+  // measured value (each relative to the first PS date the results reach).
+  if (options.ps && options.ps->has_series()) {
+    CsvWriter w((out / "ps_series.csv").string(), {"pid", "date", "n", "p10_mm", "p50_mm", "p90_mm", "measured_mm"}, comments);
+    const MemberOutputs* ref = nullptr;
+    for (std::size_t k = 0; k < n && !ref; ++k)
+      if (metrics[k] && !series[k].ps_ids.empty()) ref = &series[k];
+    if (ref) {
+      const std::size_t nd = ref->ps_dates.size();
+      for (std::size_t p = 0; p < ref->ps_ids.size(); ++p) {
+        const auto mi = options.ps->find(ref->ps_ids[p]);
+        for (std::size_t t = 0; t < nd; ++t) {
+          std::vector<double> v;
+          for (std::size_t k = 0; k < n; ++k)
+            if (metrics[k] && series[k].ps_ids == ref->ps_ids && std::isfinite(series[k].ps_up_mm[p * nd + t]))
+              v.push_back(series[k].ps_up_mm[p * nd + t]);
+          if (v.empty()) continue;
+          const Quantiles q = quantiles(v);
+          w.text(ref->ps_ids[p]).date(ref->ps_dates[t]).integer(static_cast<std::int64_t>(q.n)).number(q.p10).number(q.p50).number(q.p90);
+          const double meas = mi ? options.ps->value_mm(*mi, t) : NAN;
+          if (std::isfinite(meas)) w.number(meas);
+          else w.text("");
+          w.end_row();
+        }
+      }
     }
     w.commit();
   }

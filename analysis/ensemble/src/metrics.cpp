@@ -46,7 +46,8 @@ std::string one_file_ending(const std::string& folder, const std::string& suffix
 
 double in_mm(double m) { return m * 1e3; }
 
-void surface_metrics(const std::string& h5, const MetricOptions& o, Metrics& out) {
+void surface_metrics(const std::string& h5, const MetricOptions& o, MemberOutputs& mo) {
+  Metrics& out = mo.metrics;
   const insar::TopSurface top = insar::load_top_surface("", "", h5);
   insar::SurfaceDisplacement res(h5, top, o.field);
   const auto& times = res.times();
@@ -97,6 +98,16 @@ void surface_metrics(const std::string& h5, const MetricOptions& o, Metrics& out
     const insar::Samples s = insar::sample_displacement(res, ps, o.ps->dates, std::nullopt);
     const insar::Misfit m = insar::combine_misfits(insar::series_misfits(*o.ps, s, 2, o.window), {}, 0.0);
     out.emplace_back("insar_rms_mm", m.rms_mm);
+    // The series relative to the first PS date the results reach.
+    std::size_t first = s.dates.size();
+    for (std::size_t d = 0; d < s.dates.size() && first == s.dates.size(); ++d)
+      if (!ps.empty() && std::isfinite(s.at(0, d)[2])) first = d;
+    mo.ps_dates = s.dates;
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      mo.ps_ids.push_back(ps[p].point.id);
+      for (std::size_t d = 0; d < s.dates.size(); ++d)
+        mo.ps_up_mm.push_back(first < s.dates.size() ? in_mm(s.at(p, d)[2] - s.at(p, first)[2]) : NAN);
+    }
   }
 }
 
@@ -140,20 +151,23 @@ void scenario_metrics(const std::string& folder, Metrics& out) {
 
 }  // namespace
 
-Metrics member_metrics(const std::string& folder, const MetricOptions& options) {
-  Metrics out;
+Metrics member_metrics(const std::string& folder, const MetricOptions& options) { return member_outputs(folder, options).metrics; }
+
+MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options) {
+  MemberOutputs mo;
+  Metrics& out = mo.metrics;
   const std::string h5 = (fs::path(folder) / "result.h5").string();
   if (!fs::exists(h5)) throw InputError(folder, "has no result.h5");
   {
     static std::mutex hdf5_mutex;  // HDF5 may be built without thread safety: one reader at a time
     std::lock_guard lock(hdf5_mutex);
-    surface_metrics(h5, options, out);
+    surface_metrics(h5, options, mo);
   }
   fault_metrics(folder, out);
   scenario_metrics(folder, out);
   for (const auto& [name, v] : out)
     if (!std::isfinite(v)) throw InputError(folder, fmt::format("metric {} is not finite", name));
-  return out;
+  return mo;
 }
 
 }  // namespace ugs::ensemble

@@ -44,4 +44,15 @@ using Metrics = std::vector<std::pair<std::string, double>>;  // in a fixed orde
 // InputError when an output is missing or unreadable, or a phase lies outside the results' dates.
 Metrics member_metrics(const std::string& folder, const MetricOptions& options);
 
+// The metrics and, with PS points that have dates, the simulated vertical displacement at each
+// point on each PS date, relative to the first PS date the results reach (mm; NaN outside the
+// results' dates): points x dates, the data of the fan charts.
+struct MemberOutputs {
+  Metrics metrics;
+  std::vector<std::string> ps_ids;
+  std::vector<std::int64_t> ps_dates;
+  std::vector<double> ps_up_mm;
+};
+MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options);
+
 }  // namespace ugs::ensemble
