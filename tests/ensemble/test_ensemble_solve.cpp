@@ -144,7 +144,12 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   // 5. A failed member: recorded with its error line, excluded, listed; the others stand.
   test::spit(dir / "fake.sh", "grep -q 'c_R = [23]\\.' \"$1\" && { echo 'fake solver: c_R below 4 refused' >&2; exit 3; }\n"
                               "cp " + (dir / "single" / "result.h5").string() + " \"$2\"\ncp " +
-                                  (dir / "single" / "result.xdmf").string() + " \"${2%.h5}.xdmf\"\n");
+                                  (dir / "single" / "result.xdmf").string() + " \"${2%.h5}.xdmf\"\n"
+                              // Fault and safe-scale tables as ugs-solve writes them: chi of F1 = c_R / 5 on 2013-05-01.
+                              "c=$(sed -n 's/^c_R = //p' \"$1\" | head -1)\n"
+                              "awk -v c=\"$c\" 'BEGIN { printf \"date,fault,max_chi\\n2013-05-01,F1,%.17g\\n2013-11-01,F1,0.1\\n"
+                              "2013-05-01,F2,0.5\\n\", c / 5 }' > \"$(dirname \"$2\")/solve_faults.csv\"\n"
+                              "printf 'scale,critical\\n1,0\\n2,0\\n4,1\\n3,1\\n2.5,0\\n' > \"$(dirname \"$2\")/solve_scenario.csv\"\n");
   test::spit(dir / "lhs4.toml", std::string("[design]\nmethod = \"lhs\"\nmembers = 4\nseed = 9\n") + kParams);
   const auto f = test::run(test::tool("ugs-ensemble") + " run --spec " + (dir / "lhs4.toml").string() + " --case " +
                            (dir / "case.toml").string() + " --solver-command 'sh " + (dir / "fake.sh").string() +
@@ -156,6 +161,21 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   EXPECT_NE(f.err.find("excluded from the statistics"), std::string::npos) << f.err;
   const CsvTable q = CsvTable::read((dir / "failing" / "quantiles.csv").string());
   EXPECT_EQ(q.integer(0, q.column("n")), 2);
+  // The two members left have c_R in [4, 5) and [5, 6): chi of F1 in [0.8, 1) and [1, 1.2).
+  const CsvTable ex = CsvTable::read((dir / "failing" / "exceedance.csv").string());
+  ASSERT_EQ(ex.rows(), 2u);
+  EXPECT_EQ(ex.text(0, ex.column("fault")), "F1");
+  EXPECT_EQ(ex.number(0, ex.column("p_chi_ge_0.8")), 1.0);
+  EXPECT_EQ(ex.number(0, ex.column("p_chi_ge_1")), 0.5);
+  EXPECT_EQ(ex.number(1, ex.column("p_chi_ge_0.8")), 0.0);
+  bool safe = false, per_date = false;
+  for (std::size_t i = 0; i < q.rows(); ++i) {
+    const std::string name(q.text(i, q.column("metric")));
+    if (name == "safe_scale") safe = q.number(i, q.column("p50")) == 2.5;  // below the smallest critical 3
+    if (name == "chi_max.F1.2013-11-01") per_date = q.number(i, q.column("max")) == 0.1;
+  }
+  EXPECT_TRUE(safe);
+  EXPECT_TRUE(per_date);
 
   // 6. Bad input: exit 2, one line, nothing run.
   auto one_line = [](const test::RunResult& x) {
