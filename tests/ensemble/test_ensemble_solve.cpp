@@ -92,6 +92,16 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
     EXPECT_LE(ps.number(i, ps.column("p50_mm")), ps.number(i, ps.column("p90_mm")));
   }
 
+  // The report's ensemble pictures from that folder (tornado of morris.csv, fan charts of ps_series.csv).
+  const auto rep = test::run(test::tool("ugs-report") + " --results " + (dir / "truth.h5").string() + " --mesh " +
+                             (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() +
+                             " --phase storage=2013-05-01/2013-11-01 --ensemble " + (dir / "out").string() + " -o " +
+                             (dir / "report").string());
+  ASSERT_EQ(rep.exit_code, 0) << rep.err;
+  for (const char* png : {"ensemble_tornado_morris.png", "ensemble_fan_ps.png"})
+    EXPECT_GT(fs::file_size(dir / "report" / png), 10000u) << png;
+  EXPECT_NE(test::slurp(dir / "report" / "summary.html").find("9 of 9"), std::string::npos);
+
   // 2. A member equals a single ugs-solve run with its parameters, bit for bit.
   const CsvTable mem = CsvTable::read((dir / "out" / "members.csv").string());
   ASSERT_EQ(mem.rows(), 9u);
