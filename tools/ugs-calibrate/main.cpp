@@ -114,19 +114,12 @@ int main(int argc, char** argv) {
     ro.points_crs = o.points_crs;
     ro.id_column = o.id_column;
     ro.require_series = true;
-    PsData up = read_ps(o.measured, ro);
-    if (ro.model_crs.empty() && !up.source_crs.empty())
-      throw InputError(o.measured, fmt::format("points are in {}, but the model CRS is unknown: give --crs or a case with crs",
-                                               crs_name(up.source_crs)));
+    PsData up = read_ps_in_model(o.measured, ro);
     std::vector<std::string> ids = o.points;
     if (ids.empty())
       for (const auto& p : up.points) ids.push_back(p.id);
     if (!o.inside.empty()) {
-      const auto vec = geo::read_vector(o.inside, ro.model_crs, o.inside_where);
-      std::vector<geo::Polygon> polys;
-      for (const auto& f : vec.features) polys.insert(polys.end(), f.polygons.begin(), f.polygons.end());
-      if (polys.empty()) throw InputError(o.inside, "has no polygon (check --inside-where)");
-      const geo::PolygonSet set(polys);
+      const geo::PolygonSet set = read_polygons(o.inside, ro.model_crs, o.inside_where);
       std::vector<std::string> kept;
       for (const auto& id : ids) {
         const auto i = up.find(id);

@@ -76,21 +76,13 @@ MetricOptions metric_options(const Options& o) {
   m.window = insar::parse_window(o.window, "--window");
   m.field = o.field;
   const std::string crs = insar::model_crs(o.crs, o.case_file);
-  if (!o.inside.empty()) {
-    const auto vec = geo::read_vector(o.inside, crs, o.inside_where);
-    std::vector<geo::Polygon> polys;
-    for (const auto& f : vec.features) polys.insert(polys.end(), f.polygons.begin(), f.polygons.end());
-    if (polys.empty()) throw InputError(o.inside, "has no polygon (check --inside-where)");
-    m.trace = geo::PolygonSet(polys);
-  }
+  if (!o.inside.empty()) m.trace = insar::read_polygons(o.inside, crs, o.inside_where);
   if (!o.measured.empty()) {
     insar::PsReadOptions ro;
     ro.model_crs = crs;
     ro.points_crs = o.points_crs;
     ro.id_column = o.id_column;
-    m.ps = insar::read_ps(o.measured, ro);
-    if (crs.empty() && !m.ps->source_crs.empty())
-      throw InputError(o.measured, "points carry a CRS but the model CRS is unknown: give --crs or a case with crs");
+    m.ps = insar::read_ps_in_model(o.measured, ro);
   }
   return m;
 }
