@@ -13,8 +13,6 @@
 //     --measured insar_vertical.csv --inside reservoir_traces.geojson --window 2003-01-01/2021-12-31
 //     --solver-command "ugs-solve {mesh} --case {case} --pressure dp_a.h5 --pressure dp_c.h5 --top {out} -o {dir}/solve.h5"
 //     -j 2 -o calibration
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -22,7 +20,6 @@
 #include <set>
 
 #include "ugs/cli/tool.hpp"
-#include "ugs/formats/case_file.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/insar/case_params.hpp"
 #include "ugs/insar/crs.hpp"
@@ -56,26 +53,6 @@ struct Options {
   double xtol = 0.005;
   int max_evals = 60;
 };
-
-MisfitWindow parse_window(const std::string& text) {
-  MisfitWindow w;
-  if (text.empty()) return w;
-  const auto slash = text.find('/');
-  if (slash == std::string::npos) throw InputError("--window", fmt::format("'{}' is not START/END (ISO dates)", text));
-  const std::string a = text.substr(0, slash), b = text.substr(slash + 1);
-  if (!a.empty()) {
-    const auto t = parse_iso_date(a);
-    if (!t) throw InputError("--window", fmt::format("'{}' is not an ISO 8601 date", a));
-    w.start = *t;
-  }
-  if (!b.empty()) {
-    const auto t = parse_iso_date(b);
-    if (!t) throw InputError("--window", fmt::format("'{}' is not an ISO 8601 date", b));
-    w.end = *t;
-  }
-  if (w.start > w.end) throw InputError("--window", fmt::format("'{}': start after end", text));
-  return w;
-}
 
 std::string fmt_value(double v) { return fmt::format("{:.6g}", v); }
 
@@ -124,50 +101,12 @@ int main(int argc, char** argv) {
     check_command_template(o.solver_command, !o.mesh.empty());
     const CaseTemplate tmpl(o.case_file);
     std::vector<ParameterSpec> params;
-    std::set<std::string> seen;
-    for (const auto& text : o.params) {
-      ParameterSpec p = parse_parameter(text);
-      for (const auto& path : p.paths) {
-        (void)tmpl.value(path);
-        if (!seen.insert(path).second) throw InputError("--param " + text, fmt::format("'{}' is calibrated twice", path));
-      }
-      params.push_back(std::move(p));
-    }
+    for (const auto& text : o.params) params.push_back(parse_parameter(text));
+    // Every path a number of the case, named once, and a valid case at both bounds (checked in the
+    // system's temporary folder: the cache is created only once every input is accepted).
+    for (const auto& w : check_parameters(tmpl, params)) cli::warning("{}", w);
     const std::string cache_dir = o.cache_dir.empty() ? output + ".cache" : o.cache_dir;
-    // Both bounds must give a valid case: each copy is checked in the system's temporary folder
-    // (the cache is created only once every input is accepted).
-    for (const auto& p : params) {
-      const double now = tmpl.value(p.paths.front());
-      if (now < p.lower || now > p.upper)
-        cli::warning("{} = {} in the case lies outside the bounds {}:{}", p.paths.front(), now, p.lower, p.upper);
-      for (double bound : {p.lower, p.upper}) {
-        std::vector<std::pair<std::string, double>> v;
-        for (const auto& path : p.paths) v.emplace_back(path, bound);
-        std::string check = (fs::temp_directory_path() / fmt::format("ugs-calibrate-check-{}-XXXXXX", ::getpid())).string();
-        const int fd = ::mkstemp(check.data());
-        if (fd < 0) throw ComputeError(fmt::format("cannot create a temporary file in {}", fs::temp_directory_path().string()));
-        ::close(fd);
-        struct Remove {
-          std::string path;
-          ~Remove() {
-            std::error_code ec;
-            fs::remove(path, ec);
-          }
-        } remove_check{check};
-        {
-          std::ofstream f(check);
-          f << tmpl.render(v);
-        }
-        try {
-          (void)read_case_file(check);
-        } catch (const InputError& e) {
-          std::string msg = e.what();
-          if (msg.rfind(check, 0) == 0) msg = o.case_file + msg.substr(check.size());
-          throw InputError("--param " + p.name, fmt::format("the case is not valid at {} = {}: {}", p.name, bound, msg));
-        }
-      }
-    }
-    const MisfitWindow window = parse_window(o.window);
+    const MisfitWindow window = parse_window(o.window, "--window");
 
     // 2. Measured series at the chosen points, in the model CRS.
     PsReadOptions ro;
@@ -175,19 +114,12 @@ int main(int argc, char** argv) {
     ro.points_crs = o.points_crs;
     ro.id_column = o.id_column;
     ro.require_series = true;
-    PsData up = read_ps(o.measured, ro);
-    if (ro.model_crs.empty() && !up.source_crs.empty())
-      throw InputError(o.measured, fmt::format("points are in {}, but the model CRS is unknown: give --crs or a case with crs",
-                                               crs_name(up.source_crs)));
+    PsData up = read_ps_in_model(o.measured, ro);
     std::vector<std::string> ids = o.points;
     if (ids.empty())
       for (const auto& p : up.points) ids.push_back(p.id);
     if (!o.inside.empty()) {
-      const auto vec = geo::read_vector(o.inside, ro.model_crs, o.inside_where);
-      std::vector<geo::Polygon> polys;
-      for (const auto& f : vec.features) polys.insert(polys.end(), f.polygons.begin(), f.polygons.end());
-      if (polys.empty()) throw InputError(o.inside, "has no polygon (check --inside-where)");
-      const geo::PolygonSet set(polys);
+      const geo::PolygonSet set = read_polygons(o.inside, ro.model_crs, o.inside_where);
       std::vector<std::string> kept;
       for (const auto& id : ids) {
         const auto i = up.find(id);

@@ -7,6 +7,7 @@
 //   - chi on the faults for the minimum and maximum pressure scenarios (4.43-4.44), given the
 //     faulted solver's results;
 //   - the calibration's misfit profile, given an ugs-calibrate folder;
+//   - the ensemble's tornado and fan charts, given an ugs-ensemble folder (ensemble.cpp);
 //   - summary.html / summary.md: the headline numbers next to the thesis' and every figure.
 // Data go to plots.py (matplotlib, Debian's /usr/bin/python3) as CSV/NPY files and a JSON list of
 // figures; GeoTIFFs are written here with GDAL. The output folder appears only when complete.
@@ -120,6 +121,8 @@ int main(int argc, char** argv) {
                  "vertical displacement over the trace");
   app.add_option("--compare-since", o.compare_since, "YYYY-MM-DD: the runs' changes count from this date (default: the first date they share)");
   app.add_option("--calibration", o.calibration, "An ugs-calibrate output folder: its misfit profile and best values");
+  app.add_option("--ensemble", o.ensemble, "An ugs-ensemble output folder: tornado chart, fan charts of the PS series, chi exceedance")
+      ->check(CLI::ExistingDirectory);
   app.add_option("--discussion", o.discussion,
                  "Markdown file: why this case's numbers differ from the thesis' (a section of the summary)")
       ->check(CLI::ExistingFile);
@@ -217,6 +220,7 @@ int main(int argc, char** argv) {
     build_stress(c);
     build_faults(c);
     build_calibration(c);
+    build_ensemble(c);
     build_comparison(c);
     if (c.figures.empty()) throw InputError(o.results, "nothing to draw: " + (c.notes.empty() ? std::string("?") : c.notes.front()));
 

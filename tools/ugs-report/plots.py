@@ -14,6 +14,7 @@ plane: node values linear on triangles with the pools' outline, or values per ce
 """
 import csv
 import json
+import re
 import sys
 
 import matplotlib
@@ -343,6 +344,88 @@ def plot_compare(m, fig):
     return f
 
 
+def plot_tornado(m, fig):
+    """Sensitivity indices per metric, largest first: S1 and ST with their intervals, or mu* and sigma.
+    Per-date metrics (names ending in .YYYY-MM-DD) are left to the CSV."""
+    header, rows = read_csv(fig["csv"])
+    col = {n: i for i, n in enumerate(header)}
+    per_metric = {}
+    for r in rows:
+        if re.search(r"\.\d{4}-\d{2}-\d{2}$", r[col["metric"]]):
+            continue
+        per_metric.setdefault(r[col["metric"]], []).append(r)
+    # Metrics on which no parameter acts (every index 0, e.g. no settlement in a storage phase) stay in the CSV.
+    key = "st" if fig["method"] == "sobol" else "mu_star"
+    metrics = [k for k, rs in per_metric.items() if any(float(r[col[key]]) != 0 for r in rs)][:6] or list(per_metric)[:1]
+    f = new_figure(m, fig, layout="constrained")
+    sobol = fig["method"] == "sobol"
+    for i, name in enumerate(metrics):
+        ax = f.add_subplot(1, len(metrics), i + 1)
+        rs = per_metric[name]
+        key = "st" if sobol else "mu_star"
+        rs = sorted(rs, key=lambda r: float(r[col[key]]))
+        y = np.arange(len(rs))
+        labels = [r[col["parameter"]] for r in rs]
+        if sobol:
+            for off, k, lab in ((-0.2, "s1", "S1"), (0.2, "st", "ST")):
+                v = np.array([float(r[col[k]]) for r in rs])
+                lo = np.array([float(r[col[k + "_low"]]) for r in rs])
+                hi = np.array([float(r[col[k + "_high"]]) for r in rs])
+                ax.barh(y + off, v, height=0.4, xerr=[np.maximum(v - lo, 0), np.maximum(hi - v, 0)], capsize=3, label=lab)
+            if i == 0:
+                f.supxlabel("Sobol' index (bars: 95 % intervals)", fontsize=8)
+        else:
+            v = np.array([float(r[col["mu_star"]]) for r in rs])
+            s = np.array([float(r[col["sigma"]]) for r in rs])
+            ax.barh(y - 0.2, v, height=0.4, label="μ*")
+            ax.barh(y + 0.2, s, height=0.4, label="σ")
+            if i == 0:
+                f.supxlabel("elementary effect (metric units per unit of probability)", fontsize=8)
+        ax.set_yticks(y)
+        ax.set_yticklabels(labels if i == 0 else [""] * len(labels), fontsize=7)
+        ax.set_title(name, fontsize=8)
+        ax.grid(True, axis="x", lw=0.3, alpha=0.6)
+        if i == 0:
+            ax.legend(fontsize=7)
+    return f
+
+
+def plot_fan(m, fig):
+    """P10-P90 band and P50 of the simulated series at up to 9 PS points, with the measured series
+    shifted to the same zero (its first value)."""
+    header, rows = read_csv(fig["csv"])
+    col = {n: i for i, n in enumerate(header)}
+    by_pid = {}
+    for r in rows:
+        by_pid.setdefault(r[col["pid"]], []).append(r)
+    pids = list(by_pid)[:9]
+    n = len(pids)
+    ncol = min(3, n)
+    nrow = (n + ncol - 1) // ncol
+    f = new_figure(m, fig, layout="constrained")
+    for i, pid in enumerate(pids):
+        ax = f.add_subplot(nrow, ncol, i + 1)
+        rs = by_pid[pid]
+        t = dates([r[col["date"]] for r in rs])
+        p10, p50, p90 = (np.array([float(r[col[k]]) for r in rs]) for k in ("p10_mm", "p50_mm", "p90_mm"))
+        ax.fill_between(t, p10, p90, color="C0", alpha=0.3, lw=0, label="P10-P90")
+        ax.plot(t, p50, "-", color="C0", lw=1.2, label="P50")
+        meas = np.array([float(r[col["measured_mm"]]) if r[col["measured_mm"]] else np.nan for r in rs])
+        finite = np.isfinite(meas)
+        if finite.any():
+            ax.plot(t[finite], meas[finite] - meas[finite][0], ".", color="k", ms=3, label="InSAR")
+        ax.set_title(pid, fontsize=8)
+        ax.grid(True, lw=0.3, alpha=0.6)
+        locator = mdates.AutoDateLocator()
+        ax.xaxis.set_major_locator(locator)
+        ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
+        if i % ncol == 0:
+            ax.set_ylabel("u_z (mm)")
+        if i == 0:
+            ax.legend(fontsize=7)
+    return f
+
+
 def main():
     with open(sys.argv[1], encoding="utf-8") as fh:
         m = json.load(fh)
@@ -365,6 +448,10 @@ def main():
             f = plot_profile(m, fig)
         elif kind == "compare":
             f = plot_compare(m, fig)
+        elif kind == "tornado":
+            f = plot_tornado(m, fig)
+        elif kind == "fan":
+            f = plot_fan(m, fig)
         else:
             raise SystemExit(f"plots.py: unknown figure kind {kind!r}")
         f.savefig(fig["png"], dpi=m["dpi"], metadata={"Software": None})

@@ -37,6 +37,7 @@ struct Options {
   std::string fault_field = "chi";
   std::string fault_table;               // ugs-solve's faults CSV (default: <faults stem>.csv beside --faults)
   std::string calibration;               // ugs-calibrate output folder
+  std::string ensemble;                  // ugs-ensemble output folder
   std::vector<std::string> compare;      // LABEL=FILE: other runs on the same mesh
   std::string compare_since;             // changes from this date (default: the first shared date)
   std::string discussion;                // Markdown paragraphs comparing the run with the thesis
@@ -99,6 +100,7 @@ void build_series(Context& c);
 void build_stress(Context& c);
 void build_faults(Context& c);
 void build_calibration(Context& c);
+void build_ensemble(Context& c);
 void build_comparison(Context& c);
 // Writes summary.md and summary.html in the output folder.
 void write_summary(const Context& c);

@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <set>
+#include <unistd.h>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -13,6 +15,7 @@
 #include <fmt/format.h>
 #include <toml.hpp>
 
+#include "ugs/formats/case_file.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/toml_reader.hpp"
 
@@ -163,6 +166,51 @@ std::string toml_string(const std::string& s) {
 }
 
 }  // namespace
+
+std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::vector<ParameterSpec>& params,
+                                          const std::string& source) {
+  auto where = [&](const ParameterSpec& p) { return source.empty() ? "--param " + p.name : source; };
+  std::set<std::string> seen;
+  for (const auto& p : params)
+    for (const auto& path : p.paths) {
+      (void)tmpl.value(path);
+      if (!seen.insert(path).second) throw InputError(where(p), fmt::format("'{}' is named twice", path));
+    }
+  std::vector<std::string> warnings;
+  // Each copy is checked in the system's temporary folder (no output or cache folder exists yet).
+  for (const auto& p : params) {
+    const double now = tmpl.value(p.paths.front());
+    if (now < p.lower || now > p.upper)
+      warnings.push_back(fmt::format("{} = {} in the case lies outside the range {}:{}", p.paths.front(), now, p.lower, p.upper));
+    for (double bound : {p.lower, p.upper}) {
+      std::vector<std::pair<std::string, double>> v;
+      for (const auto& path : p.paths) v.emplace_back(path, bound);
+      std::string check = (fs::temp_directory_path() / fmt::format("ugs-case-check-{}-XXXXXX", ::getpid())).string();
+      const int fd = ::mkstemp(check.data());
+      if (fd < 0) throw ComputeError(fmt::format("cannot create a temporary file in {}", fs::temp_directory_path().string()));
+      ::close(fd);
+      struct Remove {
+        std::string path;
+        ~Remove() {
+          std::error_code ec;
+          fs::remove(path, ec);
+        }
+      } remove_check{check};
+      {
+        std::ofstream f(check);
+        f << tmpl.render(v);
+      }
+      try {
+        (void)read_case_file(check);
+      } catch (const InputError& e) {
+        std::string msg = e.what();
+        if (msg.rfind(check, 0) == 0) msg = tmpl.path() + msg.substr(check.size());
+        throw InputError(where(p), fmt::format("the case is not valid at {} = {}: {}", p.name, bound, msg));
+      }
+    }
+  }
+  return warnings;
+}
 
 std::string toml_float(double v) {
   std::string s = fmt::format("{}", v);

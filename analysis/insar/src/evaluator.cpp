@@ -21,7 +21,7 @@
 #include "ugs/formats/io.hpp"
 #include "ugs/insar/content_hash.hpp"
 #include "ugs/insar/displacement.hpp"
-#include "ugs/insar/subprocess.hpp"
+#include "ugs/insar/solver_runs.hpp"
 
 namespace ugs::insar {
 
@@ -92,54 +92,6 @@ Samples SimulatedSeries::at_dates(const std::vector<LocatedPoint>& points, const
 
 namespace {
 
-// The program `name` as the shell would find it in PATH ("" if not found).
-std::string find_in_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  if (!path || name.empty()) return "";
-  std::string_view rest = path;
-  while (true) {
-    const auto colon = rest.find(':');
-    const std::string dir(rest.substr(0, colon));
-    std::error_code ec;
-    const fs::path p = fs::path(dir.empty() ? "." : dir) / name;
-    if (fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0) return fs::absolute(p).lexically_normal().string();
-    if (colon == std::string_view::npos) return "";
-    rest.remove_prefix(colon + 1);
-  }
-}
-
-std::string substitute(const std::string& tmpl, const std::map<std::string, std::string>& values) {
-  std::string out;
-  for (std::size_t i = 0; i < tmpl.size();) {
-    if (tmpl[i] == '{' && (i == 0 || tmpl[i - 1] != '$')) {
-      const auto close = tmpl.find('}', i);
-      if (close != std::string::npos) {
-        const auto it = values.find(tmpl.substr(i + 1, close - i - 1));
-        if (it != values.end()) {
-          out += it->second;
-          i = close + 1;
-          continue;
-        }
-      }
-    }
-    out += tmpl[i++];
-  }
-  return out;
-}
-
-std::string json_string(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') q += '\\';
-    if (c == '\n') {
-      q += "\\n";
-      continue;
-    }
-    q += c;
-  }
-  return q + "\"";
-}
-
 std::string csv_quote(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string q = "\"";
@@ -147,128 +99,25 @@ std::string csv_quote(const std::string& s) {
   return q + "\"";
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-void write_text(const fs::path& p, const std::string& s) {
-  std::ofstream f(p, std::ios::binary);
-  f << s;
-  if (!f) throw ComputeError(fmt::format("cannot write {}", p.string()));
+SolverRunSetup runs_setup(const EvaluatorSetup& s) {
+  if (!s.case_template) throw std::invalid_argument("Evaluator: no case");
+  SolverRunSetup r;
+  r.case_template = s.case_template;
+  r.command = s.solver_command;
+  r.mesh_path = s.mesh_path;
+  r.cache_dir = s.cache_dir;
+  r.extra = s.setup_extra;
+  r.key_label = "ugs-calibrate cache key 2";
+  r.entry_prefix = "eval-";
+  r.keep_results = s.keep_results;
+  return r;
 }
 
 }  // namespace
 
-std::vector<std::string> files_named_in_command(const std::string& cmd) {
-  // Words as /bin/sh splits them (quotes removed, no expansion); operators end a simple command.
-  struct Word {
-    std::string text;
-    bool command_position;
-  };
-  std::vector<Word> words;
-  std::string cur;
-  bool have = false, at_command = true;
-  auto flush = [&] {
-    if (!have) return;
-    words.push_back({cur, at_command});
-    // VAR=value before the program keeps the command position.
-    const auto eq = cur.find('=');
-    const bool assignment = at_command && eq != std::string::npos && eq > 0 &&
-                            std::all_of(cur.begin(), cur.begin() + static_cast<std::ptrdiff_t>(eq),
-                                        [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-    if (!assignment) at_command = false;
-    cur.clear();
-    have = false;
-  };
-  for (std::size_t i = 0; i < cmd.size(); ++i) {
-    const char c = cmd[i];
-    if (c == '\'' || c == '"') {
-      const auto close = cmd.find(c, i + 1);
-      const std::size_t end = close == std::string::npos ? cmd.size() : close;
-      cur += cmd.substr(i + 1, end - i - 1);
-      have = true;
-      i = end;
-    } else if (c == '\\' && i + 1 < cmd.size()) {
-      cur += cmd[++i];
-      have = true;
-    } else if (std::isspace(static_cast<unsigned char>(c))) {
-      flush();
-    } else if (c == ';' || c == '&' || c == '|' || c == '(' || c == ')' || c == '\n') {
-      flush();
-      at_command = true;
-    } else if (c == '<' || c == '>') {
-      flush();
-    } else {
-      cur += c;
-      have = true;
-    }
-  }
-  flush();
-  std::vector<std::string> files;
-  auto consider = [&](const std::string& w) {
-    if (w.empty() || w.find('{') != std::string::npos || w.find('$') != std::string::npos) return;
-    std::error_code ec;
-    if (fs::is_regular_file(w, ec)) files.push_back(fs::absolute(w).lexically_normal().string());
-  };
-  for (const auto& w : words) {
-    if (w.command_position && w.text.find('/') == std::string::npos && w.text.find('=') == std::string::npos) {
-      const std::string p = find_in_path(w.text);
-      if (!p.empty()) files.push_back(p);
-      continue;
-    }
-    consider(w.text);
-    const auto eq = w.text.find('=');
-    if (eq != std::string::npos) consider(w.text.substr(eq + 1));
-  }
-  std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
-  return files;
-}
-
-void check_command_template(const std::string& cmd, bool have_mesh) {
-  if (cmd.find("{case}") == std::string::npos || cmd.find("{out}") == std::string::npos)
-    throw InputError("--solver-command", "the command must contain {case} (the modified case file) and {out} (the results "
-                                         "file it must write)");
-  static const std::regex placeholder(R"(\{([A-Za-z_]+)\})");
-  for (auto it = std::sregex_iterator(cmd.begin(), cmd.end(), placeholder); it != std::sregex_iterator(); ++it) {
-    if (it->position() > 0 && cmd[static_cast<std::size_t>(it->position()) - 1] == '$') continue;  // ${VAR} is the shell's
-    const std::string name = (*it)[1];
-    if (name != "case" && name != "out" && name != "mesh" && name != "dir")
-      throw InputError("--solver-command", fmt::format("unknown placeholder {{{}}} (known: {{case}} {{out}} {{mesh}} {{dir}})", name));
-  }
-  if (cmd.find("{mesh}") != std::string::npos && !have_mesh)
-    throw InputError("--solver-command", "uses {mesh} but no --mesh was given");
-}
-
-Evaluator::Evaluator(EvaluatorSetup setup) : setup_(std::move(setup)) {
-  if (!setup_.case_template) throw std::invalid_argument("Evaluator: no case");
-  const std::string& cmd = setup_.solver_command;
-  check_command_template(cmd, !setup_.mesh_path.empty());
+Evaluator::Evaluator(EvaluatorSetup setup) : setup_(std::move(setup)), runs_(runs_setup(setup_)) {
   if (setup_.jobs < 1) setup_.jobs = 1;
-  // The key's inputs, by content: the key text holds the hashes in a fixed order, inputs.txt also
-  // the names (a moved or renamed file with the same bytes keeps its cache entries).
-  std::string key_text = "ugs-calibrate cache key 2\n";
-  auto add = [&](const std::string& role, const std::string& hash, const std::string& name) {
-    key_text += role + " " + hash + "\n";
-    inputs_ += role + " " + hash + (name.empty() ? "" : " " + name) + "\n";
-  };
-  add("case-text", sha256_hex(setup_.case_template->text()), setup_.case_template->path());
-  for (const auto& f : setup_.case_template->referenced_files()) add("case-file", sha256_file_hex(f), f);
-  add("command-template", sha256_hex(cmd), cmd);
-  for (const auto& f : files_named_in_command(cmd)) add("command-file", sha256_file_hex(f), f);
-  if (!setup_.mesh_path.empty()) add("mesh", sha256_file_hex(setup_.mesh_path), setup_.mesh_path);
-  add("extra", sha256_hex(setup_.setup_extra), "");
-  setup_hash_ = sha256_hex(key_text);
-  std::error_code ec;
-  fs::create_directories(setup_.cache_dir, ec);
-  if (ec) throw InputError(setup_.cache_dir, "cannot create the cache folder: " + ec.message());
-  // The solver runs inside its evaluation folder: {dir}, {out}, {case} and {mesh} must not be
-  // relative to ours.
-  setup_.cache_dir = fs::absolute(setup_.cache_dir).lexically_normal().string();
-  if (!setup_.mesh_path.empty()) setup_.mesh_path = fs::absolute(setup_.mesh_path).lexically_normal().string();
+  setup_.cache_dir = runs_.cache_dir();
   // Rows of earlier runs stay in the index.
   const fs::path index = fs::path(setup_.cache_dir) / "index.csv";
   if (fs::exists(index)) {
@@ -286,14 +135,16 @@ Evaluator::Evaluator(EvaluatorSetup setup) : setup_(std::move(setup)) {
   }
 }
 
-std::string Evaluator::key(const std::vector<double>& x) const {
-  std::string k = setup_hash_;
+ParameterValues Evaluator::values_of(const std::vector<double>& x) const {
+  ParameterValues v;
   for (std::size_t i = 0; i < x.size(); ++i)
-    for (const auto& p : setup_.params[i].paths) k += "|" + p + "=" + toml_float(x[i]);
-  return k;
+    for (const auto& p : setup_.params[i].paths) v.emplace_back(p, x[i]);
+  return v;
 }
 
-std::string Evaluator::entry_name(const std::vector<double>& x) const { return "eval-" + sha256_hex(key(x)).substr(0, 20); }
+std::string Evaluator::key(const std::vector<double>& x) const { return runs_.key(values_of(x)); }
+
+std::string Evaluator::entry_name(const std::vector<double>& x) const { return runs_.entry_name(values_of(x)); }
 
 const SimulatedSeries& Evaluator::series_of(const Evaluation& e) {
   std::lock_guard lock(mutex_);
@@ -306,11 +157,11 @@ const SimulatedSeries& Evaluator::series_of(const Evaluation& e) {
 Evaluation Evaluator::run_one(const std::vector<double>& x) {
   Evaluation ev;
   ev.x = x;
-  ev.entry = entry_name(x);
-  const std::string k = key(x);
-  const fs::path entry = fs::path(setup_.cache_dir) / ev.entry;
+  const ParameterValues values = values_of(x);
+  ev.entry = runs_.entry_name(values);
+  const fs::path entry = runs_.entry_path(ev.entry);
   // A cache hit: same key, and every point we need.
-  if (fs::exists(entry / "key.txt") && fs::exists(entry / "series.csv") && read_text(entry / "key.txt") == k) {
+  if (runs_.complete(values) && fs::exists(entry / "series.csv")) {
     try {
       SimulatedSeries s = SimulatedSeries::read_csv((entry / "series.csv").string());
       bool complete = true;
@@ -326,86 +177,17 @@ Evaluation Evaluator::run_one(const std::vector<double>& x) {
       // damaged entry: computed again below
     }
   }
-  static std::atomic<unsigned> counter{0};
-  const fs::path tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-{}-{}", ev.entry, ::getpid(), counter++);
-  const fs::path failed = fs::path(setup_.cache_dir) / ("failed-" + ev.entry);
-  // Whatever happens below, no temporary folder stays: it becomes the entry, or failed-<entry>
-  // for a failed solver run (the error names it), or it is removed.
-  struct TmpGuard {
-    fs::path path;
-    ~TmpGuard() {
-      std::error_code ec;
-      if (!path.empty()) fs::remove_all(path, ec);
-    }
-  } guard{tmp};
-  auto keep_as_failed = [&] {
-    std::error_code ec;
-    fs::remove_all(failed, ec);
-    fs::rename(tmp, failed, ec);
-    return ec ? tmp.string() + " (removed)" : failed.string();
-  };
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
-  std::vector<std::pair<std::string, double>> values;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    for (const auto& p : setup_.params[i].paths) values.emplace_back(p, x[i]);
-  write_text(tmp / "case.toml", setup_.case_template->render(values));
-  write_text(tmp / "inputs.txt", inputs_);
-  const fs::path out = tmp / "result.h5";
-  auto command_in = [&](const fs::path& dir) {
-    return substitute(setup_.solver_command, {{"case", shell_quote((dir / "case.toml").string())},
-                                              {"out", shell_quote((dir / "result.h5").string())},
-                                              {"mesh", shell_quote(setup_.mesh_path)},
-                                              {"dir", shell_quote(dir.string())}});
-  };
-  const std::string cmd = command_in(tmp);
-  // The record names the entry's own folder, not the temporary one (whose name holds the process id):
-  // the same evaluation writes the same bytes.
-  write_text(tmp / "command.sh", command_in(entry) + "\n");
-  const auto r = run_shell(cmd, tmp.string(), (tmp / "solver.log").string());
   std::string params;
   for (std::size_t i = 0; i < x.size(); ++i) params += (i ? ", " : "") + setup_.params[i].name + " = " + toml_float(x[i]);
-  if (r.exit_code != 0) {
-    const std::string why = last_line((tmp / "solver.log").string());
-    throw ComputeError(fmt::format("evaluation at {}: the solver exited with code {}: {} (log and case kept in {})", params,
-                                   r.exit_code, why, keep_as_failed()));
-  }
-  if (!fs::exists(out))
-    throw ComputeError(fmt::format("evaluation at {}: the solver wrote no result.h5 (the command must write {{out}}; log in {})",
-                                   params, keep_as_failed()));
   SimulatedSeries s;
-  try {
-    static std::mutex hdf5_mutex;  // HDF5 may be built without thread safety: one reader at a time
-    std::lock_guard hdf5_lock(hdf5_mutex);
-    s = setup_.sample(out.string());
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    throw ComputeError(fmt::format("evaluation at {}: cannot sample the solver's results: {} (kept in {})", params, what,
-                                   keep_as_failed()));
-  }
-  s.write_csv((tmp / "series.csv").string());
-  // entry.json holds what the series depends on, nothing that changes from run to run: the wall
-  // time goes to timing.txt (and stderr).
-  std::string json = "{\n  \"key\": " + json_string(k) + ",\n  \"parameters\": {";
-  for (std::size_t i = 0; i < values.size(); ++i)
-    json += fmt::format("{}\n    {}: {}", i ? "," : "", json_string(values[i].first), toml_float(values[i].second));
-  json += fmt::format("\n  }},\n  \"command\": {}\n}}\n", json_string(setup_.solver_command));
-  write_text(tmp / "entry.json", json);
-  write_text(tmp / "timing.txt", fmt::format("solver_seconds {:.3f}\n", r.seconds));
-  if (!setup_.keep_results) {
-    fs::remove(out);
-    fs::remove(fs::path(out).replace_extension(".xdmf"));
-  }
-  write_text(tmp / "key.txt", k);  // last: its presence marks a complete entry
-  std::error_code ec;
-  fs::remove_all(entry, ec);
-  fs::rename(tmp, entry, ec);
-  if (!ec) {
-    guard.path.clear();
-    fs::remove_all(failed, ec);  // an earlier failure at these values is history
-  }
-  // else another process won the race: its entry is as good (the guard removes ours)
-  ev.seconds = r.seconds;
+  ev.seconds = runs_.run(values, "evaluation at " + params, [&](const std::string& folder, const std::string& h5) {
+    {
+      static std::mutex hdf5_mutex;  // HDF5 may be built without thread safety: one reader at a time
+      std::lock_guard hdf5_lock(hdf5_mutex);
+      s = setup_.sample(h5);
+    }
+    s.write_csv((fs::path(folder) / "series.csv").string());
+  });
   ev.misfit = setup_.misfit(s);
   std::lock_guard lock(mutex_);
   series_[ev.entry] = std::move(s);
@@ -464,8 +246,7 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
     out[i].index = history_.size() + 1;
     history_.push_back(out[i]);
     std::string params;
-    for (std::size_t k = 0; k < xs[i].size(); ++k)
-      for (const auto& p : setup_.params[k].paths) params += (params.empty() ? "" : ";") + p + "=" + toml_float(xs[i][k]);
+    for (const auto& [p, v] : values_of(xs[i])) params += (params.empty() ? "" : ";") + p + "=" + toml_float(v);
     // The misfit of this run (it depends on the measured series, which are not in the key).
     index_rows_[out[i].entry] = fmt::format("{},{},{:.6f}", out[i].entry, csv_quote(params), out[i].misfit.rms_mm);
     if (on_evaluation) on_evaluation(out[i]);

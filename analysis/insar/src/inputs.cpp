@@ -64,4 +64,20 @@ TopSurface load_top_surface(const std::string& mesh_path, const std::string& gro
   return surface_from_results(r);
 }
 
+geo::PolygonSet read_polygons(const std::string& path, const std::string& model_crs, const std::string& where) {
+  const auto vec = geo::read_vector(path, model_crs, where);
+  std::vector<geo::Polygon> polys;
+  for (const auto& f : vec.features) polys.insert(polys.end(), f.polygons.begin(), f.polygons.end());
+  if (polys.empty()) throw InputError(path, "has no polygon (check --inside-where)");
+  return geo::PolygonSet(polys);
+}
+
+PsData read_ps_in_model(const std::string& path, const PsReadOptions& options) {
+  PsData d = read_ps(path, options);
+  if (options.model_crs.empty() && !d.source_crs.empty())
+    throw InputError(path, fmt::format("points are in {}, but the model CRS is unknown: give --crs or a case with crs",
+                                       crs_name(d.source_crs)));
+  return d;
+}
+
 }  // namespace ugs::insar

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 
 namespace ugs::insar {
@@ -64,6 +65,26 @@ Misfit combine_misfits(std::vector<SeriesMisfit> up, std::vector<SeriesMisfit> e
   m.series = std::move(up);
   if (east_weight > 0) m.series.insert(m.series.end(), east.begin(), east.end());
   return m;
+}
+
+MisfitWindow parse_window(const std::string& text, const std::string& option) {
+  MisfitWindow w;
+  if (text.empty()) return w;
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) throw InputError(option, fmt::format("'{}' is not START/END (ISO dates)", text));
+  const std::string a = text.substr(0, slash), b = text.substr(slash + 1);
+  if (!a.empty()) {
+    const auto t = parse_iso_date(a);
+    if (!t) throw InputError(option, fmt::format("'{}' is not an ISO 8601 date", a));
+    w.start = *t;
+  }
+  if (!b.empty()) {
+    const auto t = parse_iso_date(b);
+    if (!t) throw InputError(option, fmt::format("'{}' is not an ISO 8601 date", b));
+    w.end = *t;
+  }
+  if (w.start > w.end) throw InputError(option, fmt::format("'{}': start after end", text));
+  return w;
 }
 
 }  // namespace ugs::insar

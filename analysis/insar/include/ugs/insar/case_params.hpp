@@ -48,6 +48,14 @@ private:
   std::string path_, text_;
 };
 
+// The checks every tool that varies case parameters makes before running anything (ugs-calibrate,
+// ugs-ensemble): each path is a number in the case, no path is named twice, and the case stays
+// valid (ugs::read_case_file) at each parameter's lower and upper value, rendered to a temporary
+// file that is always removed. Errors are InputErrors at `source` ("" = "--param <name>"), the
+// case's own message quoted. Returns warnings for the caller to print: a case value outside
+// [lower, upper].
+std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::vector<ParameterSpec>& params, const std::string& source = "");
+
 // Shortest decimal that reads back to `v`, always a TOML float ("3.0", "2.5e-07").
 std::string toml_float(double v);
 

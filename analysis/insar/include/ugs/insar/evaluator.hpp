@@ -1,16 +1,11 @@
 // One calibration evaluation = the solver run for a set of parameter values, kept in a cache.
 //
-// For values x the evaluator renders a copy of the case with x (case_params.hpp), runs the
-// solver command template as a subprocess in a fresh folder ({case}, {out}, {mesh}, {dir} are
-// replaced by shell-quoted paths; the shell's ${VAR} is left alone), samples the displacement of
-// its result at the PS points in-process, and keeps the sampled series (not the results file,
-// unless asked) in
+// For values x the evaluator has the shared runner (solver_runs.hpp) run the solver command on a
+// copy of the case with x, samples the displacement of its result at the PS points in-process, and
+// keeps the sampled series (not the results file, unless asked) in
 //   CACHE/eval-<hash>/{case.toml, series.csv, entry.json, key.txt, inputs.txt, solver.log, timing.txt}
-// The key is a SHA-256 (content_hash.hpp) of everything that decides a cached series: the case
-// text and the content of every file it names, the command template and the content of every file
-// it names (pressure files, restart state, the solver program itself, also when found in PATH),
-// the mesh's content, `setup_extra` (the caller puts the PS points' ids and exact positions, the
-// field and the top group there), and the values. Same key, same series; any change of an input
+// The key covers what solver_runs.hpp lists, with `setup_extra` (the caller puts the PS points'
+// ids and exact positions, the field and the top group there), and the values. Same key, same series; any change of an input
 // gives another entry. A repeated run, or an optimizer coming back to a point, costs nothing;
 // CACHE/index.csv lists every entry (no timings: they are in each entry's timing.txt and on
 // stderr). Up to `jobs` evaluations run at once; entries appear by atomic rename, so several
@@ -27,6 +22,7 @@
 
 #include "ugs/insar/case_params.hpp"
 #include "ugs/insar/misfit.hpp"
+#include "ugs/insar/solver_runs.hpp"
 
 namespace ugs::insar {
 
@@ -86,28 +82,19 @@ public:
   std::string key(const std::vector<double>& x) const;
   const SimulatedSeries& series_of(const Evaluation& e);  // from the cache entry
   // What the key covers, one input a line (written to each entry's inputs.txt).
-  const std::string& inputs_description() const { return inputs_; }
+  const std::string& inputs_description() const { return runs_.inputs_description(); }
 
 private:
   Evaluation run_one(const std::vector<double>& x);
+  ParameterValues values_of(const std::vector<double>& x) const;
   void write_index();
 
   EvaluatorSetup setup_;
-  std::string setup_hash_;
-  std::string inputs_;
+  SolverRuns runs_;  // the shared runner of solver subprocesses (solver_runs.hpp)
   std::vector<Evaluation> history_;
   std::map<std::string, SimulatedSeries> series_;   // entry -> series (for the best one and reports)
   std::map<std::string, std::string> index_rows_;   // entry -> CSV row
   std::mutex mutex_;
 };
-
-// InputError for a solver command template without {case} or {out}, with a {name} other than
-// case, out, mesh and dir, or using {mesh} without a mesh.
-void check_command_template(const std::string& command, bool have_mesh);
-
-// Files a shell command names: every word (or the value of --opt=VALUE) that is an existing regular
-// file, and the program of each simple command looked up in PATH; absolute, sorted, unique.
-// Words holding {case}, {out}, {mesh} or {dir} are skipped (the evaluation substitutes its own files).
-std::vector<std::string> files_named_in_command(const std::string& command);
 
 }  // namespace ugs::insar

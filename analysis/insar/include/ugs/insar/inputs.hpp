@@ -1,10 +1,13 @@
-// Inputs shared by ugs-sample, ugs-calibrate and ugs-report: the model CRS (from --crs or the case
-// file's crs) and the top surface (the mesh group, or the results file's own cells).
+// Inputs shared by ugs-sample, ugs-calibrate, ugs-ensemble and ugs-report: the model CRS (from
+// --crs or the case file's crs), the top surface (the mesh group, or the results file's own
+// cells), PS points in the model CRS and the polygons that choose them (a reservoir trace).
 #pragma once
 #include <string>
 #include <vector>
 
+#include "ugs/insar/ps_data.hpp"
 #include "ugs/insar/surface.hpp"
+#include "ugs/meshing/geodata.hpp"
 
 namespace ugs::insar {
 
@@ -13,6 +16,13 @@ std::string model_crs(const std::string& crs, const std::string& case_path);
 
 // From `mesh_path` (group `group`, e.g. "bnd:top") when given, else from the results file.
 TopSurface load_top_surface(const std::string& mesh_path, const std::string& group, const std::string& results_path);
+
+// The polygons of any OGR file (in the model CRS, `where` an attribute filter); InputError "has no
+// polygon (check --inside-where)" when there is none.
+geo::PolygonSet read_polygons(const std::string& path, const std::string& model_crs, const std::string& where);
+
+// read_ps, refusing points that declare a CRS when the model CRS (options.model_crs) is unknown.
+PsData read_ps_in_model(const std::string& path, const PsReadOptions& options);
 
 // A numeric option: InputError(option, "inf (expected a finite number >= 0)") unless finite and
 // within [lo, hi] (lo excluded when `lo_open`).

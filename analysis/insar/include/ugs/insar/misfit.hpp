@@ -40,6 +40,9 @@ struct Misfit {
 std::vector<SeriesMisfit> series_misfits(const PsData& measured, const Samples& simulated, int component,
                                          const MisfitWindow& window);
 
+// START/END (ISO dates, either may be empty; "" = all dates); InputError at `option` otherwise.
+MisfitWindow parse_window(const std::string& text, const std::string& option);
+
 // Pools the series; InputError when no residual falls in the window.
 Misfit combine_misfits(std::vector<SeriesMisfit> up, std::vector<SeriesMisfit> east, double east_weight);
 

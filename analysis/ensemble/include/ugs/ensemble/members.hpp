@@ -1,0 +1,58 @@
+// The members of an ensemble as solver runs: member k (1-based) of the design is the case with
+// the parameters' paths set to row k, run through the shared runner (insar::SolverRuns, as
+// ugs-calibrate's evaluations) into CACHE/member-<hash>/, content-addressed, so a rerun (or a
+// Makefile / Slurm job running one member) skips the members already done. The entry keeps the
+// solver's outputs (result.h5, *_faults.csv, *_scenario.csv): metrics are computed when collecting.
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ugs/ensemble/design.hpp"
+#include "ugs/insar/solver_runs.hpp"
+
+namespace ugs::ensemble {
+
+enum class MemberState { done, failed, missing };
+
+struct MemberStatus {
+  MemberState state = MemberState::missing;
+  std::string entry;        // the entry folder's name
+  std::string error;        // failed: the runner's error line; missing: "not run"
+  bool ran_now = false;
+  double seconds = 0;
+};
+
+class EnsembleMembers {
+public:
+  EnsembleMembers(const EnsembleSpec& spec, Design design, const insar::CaseTemplate& tmpl, const std::string& command,
+                  const std::string& mesh, const std::string& cache_dir);
+
+  std::size_t size() const { return design_.x.size(); }
+  const Design& design() const { return design_; }
+  insar::ParameterValues values(std::size_t k) const;   // k 0-based
+  std::string entry(std::size_t k) const;
+  std::string folder(std::size_t k) const;                // CACHE/entry
+  MemberStatus status(std::size_t k) const;              // from the cache, runs nothing
+
+  // Runs the members `which` (0-based) not yet done, up to `jobs` at once. A failed member is
+  // recorded (failed-<entry>/error.txt) and reported in its status, never thrown;
+  // `on_done(k, status)` is called under a lock after each.
+  std::vector<MemberStatus> run(const std::vector<std::size_t>& which, int jobs,
+                                const std::function<void(std::size_t, const MemberStatus&)>& on_done);
+  const insar::SolverRuns& runs() const { return *runs_; }
+
+private:
+  const EnsembleSpec& spec_;
+  Design design_;
+  std::unique_ptr<insar::SolverRuns> runs_;
+};
+
+// A Makefile (GNU make) and a Slurm job-array script whose jobs each run one member with
+// `member_command` + " --member K" (K 1-based) — the same code path as a local run, into the same
+// cache, so `ugs-ensemble collect` afterwards reads their results as its own.
+std::string makefile(const EnsembleMembers& members, const std::string& member_command, const std::string& collect_command);
+std::string slurm_script(const EnsembleMembers& members, const std::string& member_command, const std::string& collect_command);
+
+}  // namespace ugs::ensemble

@@ -1,0 +1,192 @@
+#include "ugs/ensemble/collect.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "ugs/ensemble/morris.hpp"
+#include "ugs/ensemble/statistics.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
+
+namespace ugs::ensemble {
+
+namespace fs = std::filesystem;
+
+CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members, const MetricOptions& options,
+                       const std::string& out_dir, const std::vector<std::string>& comments) {
+  CollectSummary sum;
+  const std::size_t n = members.size(), d = spec.parameters.size();
+  sum.members = n;
+  const fs::path out(out_dir);
+  // 1. Each member's metrics; the metric names in first-seen order (members in design order).
+  std::vector<std::optional<Metrics>> metrics(n);
+  std::vector<MemberOutputs> series(n);
+  std::vector<std::string> errors(n);
+  std::vector<std::string> names;
+  std::map<std::string, std::size_t> column;
+  for (std::size_t k = 0; k < n; ++k) {
+    const MemberStatus s = members.status(k);
+    if (s.state != MemberState::done) {
+      errors[k] = s.state == MemberState::failed ? s.error : "not run (no entry in the cache)";
+      continue;
+    }
+    try {
+      series[k] = member_outputs(members.folder(k), options);
+      metrics[k] = series[k].metrics;
+    } catch (const InputError& e) {
+      errors[k] = fmt::format("member {}: {}", k + 1, e.what());
+      continue;
+    }
+    for (const auto& [name, v] : *metrics[k])
+      if (column.emplace(name, names.size()).second) names.push_back(name);
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    if (metrics[k]) ++sum.done;
+    else sum.failures.emplace_back(k + 1, errors[k]);
+  // value[m][k], and whether member k has metric m
+  std::vector<std::vector<double>> value(names.size(), std::vector<double>(n, 0.0));
+  std::vector<std::vector<bool>> has(names.size(), std::vector<bool>(n, false));
+  for (std::size_t k = 0; k < n; ++k)
+    if (metrics[k])
+      for (const auto& [name, v] : *metrics[k]) {
+        value[column[name]][k] = v;
+        has[column[name]][k] = true;
+      }
+
+  {
+    CsvWriter w((out / "parameters.csv").string(), {"parameter", "paths", "distribution"}, comments);
+    for (const auto& p : spec.parameters) {
+      std::string paths;
+      for (const auto& q : p.paths) paths += (paths.empty() ? "" : ";") + q;
+      w.text(p.name).text(paths).text(p.distribution.describe()).end_row();
+    }
+    w.commit();
+  }
+  {
+    std::vector<std::string> cols{"member", "entry", "status"};
+    for (const auto& p : spec.parameters) cols.push_back(p.name);
+    cols.insert(cols.end(), names.begin(), names.end());
+    CsvWriter w((out / "members.csv").string(), cols, comments);
+    for (std::size_t k = 0; k < n; ++k) {
+      w.integer(static_cast<std::int64_t>(k + 1)).text(members.entry(k)).text(metrics[k] ? "ok" : "failed");
+      for (std::size_t i = 0; i < d; ++i) w.number(members.design().x[k][i]);
+      for (std::size_t m = 0; m < names.size(); ++m) {
+        if (has[m][k]) w.number(value[m][k]);
+        else w.text("");
+      }
+      w.end_row();
+    }
+    w.commit();
+  }
+  {
+    CsvWriter w((out / "failures.csv").string(), {"member", "entry", "error"}, comments);
+    for (const auto& [k, e] : sum.failures) w.integer(static_cast<std::int64_t>(k)).text(members.entry(k - 1)).text(e).end_row();
+    w.commit();
+  }
+  if (sum.done == 0) throw ComputeError(fmt::format("no member of {} succeeded (failures.csv lists them)", n));
+  auto values_of = [&](std::size_t m) {
+    std::vector<double> v;
+    for (std::size_t k = 0; k < n; ++k)
+      if (has[m][k]) v.push_back(value[m][k]);
+    return v;
+  };
+  {
+    CsvWriter w((out / "quantiles.csv").string(), {"metric", "n", "mean", "p10", "p50", "p90", "min", "max"}, comments);
+    for (std::size_t m = 0; m < names.size(); ++m) {
+      const Quantiles q = quantiles(values_of(m));
+      w.text(names[m]).integer(static_cast<std::int64_t>(q.n)).number(q.mean).number(q.p10).number(q.p50).number(q.p90);
+      w.number(q.min).number(q.max).end_row();
+    }
+    w.commit();
+  }
+  {
+    CsvWriter w((out / "exceedance.csv").string(), {"fault", "n", "p_chi_ge_0.8", "p_chi_ge_1"}, comments);
+    const std::string prefix = "chi_max.";
+    for (std::size_t m = 0; m < names.size(); ++m) {
+      const std::string& name = names[m];
+      if (name.rfind(prefix, 0) != 0) continue;
+      const std::string fault = name.substr(prefix.size());
+      // chi_max.<fault>, not the per-date chi_max.<fault>.<date>
+      const auto dot = fault.rfind('.');
+      if (dot != std::string::npos && parse_iso_date(fault.substr(dot + 1))) continue;
+      const auto v = values_of(m);
+      w.text(fault).integer(static_cast<std::int64_t>(v.size())).number(exceedance(v, 0.8)).number(exceedance(v, 1.0)).end_row();
+    }
+    w.commit();
+  }
+  // The fan charts' data: quantiles of the simulated series at each PS point and date, beside the
+  // measured value (each relative to the first PS date the results reach).
+  if (options.ps && options.ps->has_series()) {
+    CsvWriter w((out / "ps_series.csv").string(), {"pid", "date", "n", "p10_mm", "p50_mm", "p90_mm", "measured_mm"}, comments);
+    const MemberOutputs* ref = nullptr;
+    for (std::size_t k = 0; k < n && !ref; ++k)
+      if (metrics[k] && !series[k].ps_ids.empty()) ref = &series[k];
+    if (ref) {
+      const std::size_t nd = ref->ps_dates.size();
+      for (std::size_t p = 0; p < ref->ps_ids.size(); ++p) {
+        const auto mi = options.ps->find(ref->ps_ids[p]);
+        for (std::size_t t = 0; t < nd; ++t) {
+          std::vector<double> v;
+          for (std::size_t k = 0; k < n; ++k)
+            if (metrics[k] && series[k].ps_ids == ref->ps_ids && std::isfinite(series[k].ps_up_mm[p * nd + t]))
+              v.push_back(series[k].ps_up_mm[p * nd + t]);
+          if (v.empty()) continue;
+          const Quantiles q = quantiles(v);
+          w.text(ref->ps_ids[p]).date(ref->ps_dates[t]).integer(static_cast<std::int64_t>(q.n)).number(q.p10).number(q.p50).number(q.p90);
+          const double meas = mi ? options.ps->value_mm(*mi, t) : NAN;
+          if (std::isfinite(meas)) w.number(meas);
+          else w.text("");
+          w.end_row();
+        }
+      }
+    }
+    w.commit();
+  }
+  std::vector<bool> ok(n);
+  auto ok_for = [&](std::size_t m) {
+    for (std::size_t k = 0; k < n; ++k) ok[k] = has[m][k];
+    return ok;
+  };
+  if (spec.method == DesignMethod::sobol) {
+    std::vector<std::string> no_variance;
+    std::vector<std::string> c = comments;
+    CsvWriter w((out / "sobol.csv").string(),
+                {"metric", "parameter", "s1", "s1_low", "s1_high", "st", "st_low", "st_high", "base_points"}, c);
+    for (std::size_t m = 0; m < names.size(); ++m) {
+      SobolIndices s;
+      try {
+        s = sobol_indices(members.design(), value[m], ok_for(m));
+      } catch (const ComputeError& e) {
+        sum.notes.push_back(fmt::format("no Sobol' indices for {}: {}", names[m], e.what()));
+        continue;
+      }
+      for (std::size_t i = 0; i < d; ++i) {
+        w.text(names[m]).text(spec.parameters[i].name).number(s.first[i]).number(s.first_low[i]).number(s.first_high[i]);
+        w.number(s.total[i]).number(s.total_low[i]).number(s.total_high[i]).integer(static_cast<std::int64_t>(s.base)).end_row();
+      }
+    }
+    w.commit();
+  }
+  if (spec.method == DesignMethod::morris) {
+    CsvWriter w((out / "morris.csv").string(), {"metric", "parameter", "mu", "mu_star", "sigma", "trajectories"}, comments);
+    for (std::size_t m = 0; m < names.size(); ++m) {
+      const MorrisEffects e = morris_effects(d, members.design().morris_factor, members.design().morris_delta, value[m], ok_for(m));
+      if (e.trajectories == 0) {
+        sum.notes.push_back(fmt::format("no Morris effects for {}: no complete trajectory", names[m]));
+        continue;
+      }
+      for (std::size_t i = 0; i < d; ++i)
+        w.text(names[m]).text(spec.parameters[i].name).number(e.mu[i]).number(e.mu_star[i]).number(e.sigma[i])
+            .integer(static_cast<std::int64_t>(e.trajectories)).end_row();
+    }
+    w.commit();
+  }
+  return sum;
+}
+
+}  // namespace ugs::ensemble

@@ -1,0 +1,149 @@
+#include "ugs/ensemble/members.hpp"
+
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/error.hpp"
+
+namespace ugs::ensemble {
+
+namespace fs = std::filesystem;
+
+EnsembleMembers::EnsembleMembers(const EnsembleSpec& spec, Design design, const insar::CaseTemplate& tmpl,
+                                 const std::string& command, const std::string& mesh, const std::string& cache_dir)
+    : spec_(spec), design_(std::move(design)) {
+  insar::SolverRunSetup s;
+  s.case_template = &tmpl;
+  s.command = command;
+  s.mesh_path = mesh;
+  s.cache_dir = cache_dir;
+  s.key_label = "ugs-ensemble member key 1";
+  s.entry_prefix = "member-";
+  s.keep_results = true;
+  runs_ = std::make_unique<insar::SolverRuns>(std::move(s));
+}
+
+insar::ParameterValues EnsembleMembers::values(std::size_t k) const {
+  insar::ParameterValues v;
+  for (std::size_t i = 0; i < spec_.parameters.size(); ++i)
+    for (const auto& p : spec_.parameters[i].paths) v.emplace_back(p, design_.x[k][i]);
+  return v;
+}
+
+std::string EnsembleMembers::entry(std::size_t k) const { return runs_->entry_name(values(k)); }
+std::string EnsembleMembers::folder(std::size_t k) const { return runs_->entry_path(entry(k)); }
+
+MemberStatus EnsembleMembers::status(std::size_t k) const {
+  MemberStatus s;
+  const auto v = values(k);
+  s.entry = runs_->entry_name(v);
+  if (runs_->complete(v)) {
+    s.state = MemberState::done;
+    return s;
+  }
+  const fs::path err = fs::path(runs_->failed_path(s.entry)) / "error.txt";
+  if (fs::exists(err)) {
+    s.state = MemberState::failed;
+    std::string line = insar::read_text_file(err.string());
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    s.error = line.substr(0, line.find('\n'));
+    return s;
+  }
+  s.error = "not run";
+  return s;
+}
+
+std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& which, int jobs,
+                                               const std::function<void(std::size_t, const MemberStatus&)>& on_done) {
+  std::vector<MemberStatus> out(which.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex lock;
+  auto worker = [&] {
+    for (;;) {
+      const std::size_t j = next++;
+      if (j >= which.size()) return;
+      const std::size_t k = which[j];
+      MemberStatus s = status(k);
+      if (s.state != MemberState::done) {
+        // Two members with the same values share an entry: the runner's atomic rename settles it.
+        try {
+          s.seconds = runs_->run(values(k), fmt::format("member {}", k + 1), [](const std::string&, const std::string&) {});
+          s.state = MemberState::done;
+          s.error.clear();
+        } catch (const ComputeError& e) {
+          s.state = MemberState::failed;
+          s.error = e.what();
+        }
+        s.ran_now = true;
+      }
+      std::lock_guard g(lock);
+      out[j] = s;
+      if (on_done) on_done(k, s);
+    }
+  };
+  const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(std::max(jobs, 1)), which.size());
+  std::vector<std::thread> threads;
+  for (std::size_t t = 1; t < n; ++t) threads.emplace_back(worker);
+  if (n > 0) worker();
+  for (auto& t : threads) t.join();
+  return out;
+}
+
+namespace {
+
+// A make variable's value: '$' doubled, '#' escaped.
+std::string make_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    if (c == '$') o += "$$";
+    else if (c == '#') o += "\\#";
+    else o += c;
+  }
+  return o;
+}
+
+}  // namespace
+
+std::string makefile(const EnsembleMembers& m, const std::string& member_command, const std::string& collect_command) {
+  std::string f = fmt::format(
+      "# {} members of an ugs-ensemble (written by ugs-ensemble --emit make): run them with\n"
+      "#   make -f THIS -k -j N\n"
+      "# (-k: a failed member is recorded and the others go on), then collect with `make -f THIS collect`.\n"
+      "# Each target is a member's key.txt in the cache, written last by the run: done members are skipped.\n"
+      "MEMBER = {}\n"
+      "COLLECT = {}\n\n",
+      m.size(), make_escape(member_command), make_escape(collect_command));
+  std::string all = "all:";
+  std::string rules;
+  std::vector<std::string> seen;
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    const std::string target = make_escape(m.folder(k) + "/key.txt");
+    if (std::find(seen.begin(), seen.end(), target) != seen.end()) continue;  // same values as an earlier member
+    seen.push_back(target);
+    all += " \\\n  " + target;
+    rules += fmt::format("{}:\n\t$(MEMBER) --member {}\n", target, k + 1);
+  }
+  f += all + "\n\ncollect: all\n\t$(COLLECT)\n\n.PHONY: all collect\n\n" + rules;
+  return f;
+}
+
+std::string slurm_script(const EnsembleMembers& m, const std::string& member_command, const std::string& collect_command) {
+  return fmt::format(
+      "#!/bin/bash\n"
+      "# {} members of an ugs-ensemble (written by ugs-ensemble --emit slurm), one array task each:\n"
+      "#   sbatch THIS\n"
+      "# then, when the array is done: {}\n"
+      "# A task whose member is already in the cache returns at once.\n"
+      "#SBATCH --job-name=ugs-ensemble\n"
+      "#SBATCH --array=1-{}\n"
+      "#SBATCH --ntasks=1\n"
+      "set -euo pipefail\n"
+      "{} --member \"$SLURM_ARRAY_TASK_ID\"\n",
+      m.size(), collect_command, m.size(), member_command);
+}
+
+}  // namespace ugs::ensemble

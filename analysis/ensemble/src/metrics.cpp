@@ -1,0 +1,173 @@
+#include "ugs/ensemble/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "ugs/formats/csv.hpp"
+#include "ugs/insar/displacement.hpp"
+#include "ugs/insar/inputs.hpp"
+#include "ugs/insar/sampling.hpp"
+#include "ugs/insar/surface.hpp"
+
+namespace ugs::ensemble {
+
+namespace fs = std::filesystem;
+
+Phase parse_phase(const std::string& text) {
+  const auto eq = text.find('='), slash = text.find('/');
+  if (eq == std::string::npos || eq == 0 || slash == std::string::npos || slash < eq)
+    throw InputError("--phase " + text, "expected NAME=START/END, e.g. storage=2015-05-01/2015-11-01");
+  const auto a = parse_iso_date(text.substr(eq + 1, slash - eq - 1)), b = parse_iso_date(text.substr(slash + 1));
+  if (!a || !b) throw InputError("--phase " + text, "dates must be ISO 8601 (YYYY-MM-DD)");
+  if (*a >= *b) throw InputError("--phase " + text, "the start must come before the end");
+  return {text.substr(0, eq), *a, *b};
+}
+
+namespace {
+
+// The one file of the folder whose name ends with `suffix` ("" if none).
+std::string one_file_ending(const std::string& folder, const std::string& suffix) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    const std::string n = e.path().filename().string();
+    if (n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0) found.push_back(e.path().string());
+  }
+  if (found.size() > 1) {
+    std::sort(found.begin(), found.end());
+    throw InputError(folder, fmt::format("{} files ending in {} ({} and {}): expected one", found.size(), suffix, found[0], found[1]));
+  }
+  return found.empty() ? "" : found.front();
+}
+
+double in_mm(double m) { return m * 1e3; }
+
+void surface_metrics(const std::string& h5, const MetricOptions& o, MemberOutputs& mo) {
+  Metrics& out = mo.metrics;
+  const insar::TopSurface top = insar::load_top_surface("", "", h5);
+  insar::SurfaceDisplacement res(h5, top, o.field);
+  const auto& times = res.times();
+  if (times.empty()) throw InputError(h5, "has no result step");
+  std::vector<Phase> phases = o.phases;
+  if (phases.empty()) phases.push_back({"all", times.front(), times.back()});
+  std::vector<bool> use(top.points.size(), true);
+  if (o.trace)
+    for (std::size_t i = 0; i < top.points.size(); ++i) use[i] = o.trace->contains({top.points[i][0], top.points[i][1]});
+  if (std::find(use.begin(), use.end(), true) == use.end()) throw InputError(h5, "no top-surface node lies inside the trace polygons");
+  std::vector<insar::LocatedPoint> ps;
+  if (o.ps) {
+    const insar::SurfaceLocator loc(top);
+    ps = insar::locate_points(loc, o.ps->points, false).sampled;
+    if (ps.empty()) throw InputError(h5, "no PS point lies on the results' top surface (wrong CRS?)");
+  }
+  for (const auto& ph : phases) {
+    const auto a = res.at_time(ph.start), b = res.at_time(ph.end);
+    if (!a || !b)
+      throw InputError(h5, fmt::format("phase {} ({} / {}) lies outside the results' dates {} .. {}", ph.name,
+                                       format_iso_date(ph.start), format_iso_date(ph.end), format_iso_date(times.front()),
+                                       format_iso_date(times.back())));
+    double up = 0, down = 0;
+    for (std::size_t i = 0; i < use.size(); ++i)
+      if (use[i]) {
+        const double dz = (*b)[3 * i + 2] - (*a)[3 * i + 2];
+        up = std::max(up, dz);
+        down = std::max(down, -dz);
+      }
+    out.emplace_back("uplift_max_mm." + ph.name, in_mm(up));
+    out.emplace_back("settlement_max_mm." + ph.name, in_mm(down));
+    if (!ps.empty()) {
+      double pu = 0, pd = 0;
+      for (const auto& p : ps) {
+        double dz = 0;
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t n = top.triangles[p.hit.triangle][static_cast<std::size_t>(k)];
+          dz += p.hit.weights[static_cast<std::size_t>(k)] * ((*b)[3 * n + 2] - (*a)[3 * n + 2]);
+        }
+        pu = std::max(pu, dz);
+        pd = std::max(pd, -dz);
+      }
+      out.emplace_back("ps_uplift_max_mm." + ph.name, in_mm(pu));
+      out.emplace_back("ps_settlement_max_mm." + ph.name, in_mm(pd));
+    }
+  }
+  if (o.ps && o.ps->has_series()) {
+    const insar::Samples s = insar::sample_displacement(res, ps, o.ps->dates, std::nullopt);
+    const insar::Misfit m = insar::combine_misfits(insar::series_misfits(*o.ps, s, 2, o.window), {}, 0.0);
+    out.emplace_back("insar_rms_mm", m.rms_mm);
+    // The series relative to the first PS date the results reach.
+    std::size_t first = s.dates.size();
+    for (std::size_t d = 0; d < s.dates.size() && first == s.dates.size(); ++d)
+      if (!ps.empty() && std::isfinite(s.at(0, d)[2])) first = d;
+    mo.ps_dates = s.dates;
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      mo.ps_ids.push_back(ps[p].point.id);
+      for (std::size_t d = 0; d < s.dates.size(); ++d)
+        mo.ps_up_mm.push_back(first < s.dates.size() ? in_mm(s.at(p, d)[2] - s.at(p, first)[2]) : NAN);
+    }
+  }
+}
+
+void fault_metrics(const std::string& folder, Metrics& out) {
+  const std::string path = one_file_ending(folder, "_faults.csv");
+  if (path.empty()) return;
+  const CsvTable t = CsvTable::read(path);
+  const auto cd = t.column("date"), cf = t.column("fault"), cc = t.column("max_chi");
+  std::map<std::string, std::map<std::int64_t, double>> chi;  // fault -> date -> max chi
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    double& v = chi[std::string(t.text(r, cf))].try_emplace(t.date(r, cd), 0.0).first->second;
+    v = std::max(v, t.number(r, cc));
+  }
+  for (const auto& [fault, by_date] : chi) {
+    double m = 0;
+    for (const auto& [d, v] : by_date) m = std::max(m, v);
+    out.emplace_back("chi_max." + fault, m);
+  }
+  for (const auto& [fault, by_date] : chi)
+    for (const auto& [d, v] : by_date) out.emplace_back("chi_max." + fault + "." + format_iso_date(d), v);
+}
+
+void scenario_metrics(const std::string& folder, Metrics& out) {
+  const std::string path = one_file_ending(folder, "_scenario.csv");
+  if (path.empty()) return;
+  const CsvTable t = CsvTable::read(path);
+  const auto cs = t.column("scale"), cc = t.column("critical");
+  // The largest non-critical scale below the smallest critical one (the search's bracket).
+  double critical = INFINITY, safe = 0;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.integer(r, cc) != 0) critical = std::min(critical, t.number(r, cs));
+  bool any = false;
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.integer(r, cc) == 0 && t.number(r, cs) < critical) {
+      safe = std::max(safe, t.number(r, cs));
+      any = true;
+    }
+  if (t.rows() == 0) throw InputError(path, "has no trial");
+  out.emplace_back("safe_scale", any ? safe : 0.0);
+}
+
+}  // namespace
+
+Metrics member_metrics(const std::string& folder, const MetricOptions& options) { return member_outputs(folder, options).metrics; }
+
+MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options) {
+  MemberOutputs mo;
+  Metrics& out = mo.metrics;
+  const std::string h5 = (fs::path(folder) / "result.h5").string();
+  if (!fs::exists(h5)) throw InputError(folder, "has no result.h5");
+  {
+    static std::mutex hdf5_mutex;  // HDF5 may be built without thread safety: one reader at a time
+    std::lock_guard lock(hdf5_mutex);
+    surface_metrics(h5, options, mo);
+  }
+  fault_metrics(folder, out);
+  scenario_metrics(folder, out);
+  for (const auto& [name, v] : out)
+    if (!std::isfinite(v)) throw InputError(folder, fmt::format("metric {} is not finite", name));
+  return mo;
+}
+
+}  // namespace ugs::ensemble

@@ -1,0 +1,171 @@
+#include "ugs/ensemble/spec.hpp"
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "ugs/ensemble/design.hpp"
+#include "ugs/formats/toml_reader.hpp"
+#include "ugs/insar/case_params.hpp"
+
+namespace ugs::ensemble {
+
+std::string to_string(DesignMethod m) {
+  switch (m) {
+    case DesignMethod::lhs: return "lhs";
+    case DesignMethod::sobol: return "sobol";
+    case DesignMethod::morris: return "morris";
+  }
+  return "";
+}
+
+std::string Distribution::describe() const {
+  std::string s;
+  switch (kind) {
+    case DistributionKind::uniform: s = fmt::format("uniform({:g}, {:g})", a, b); break;
+    case DistributionKind::normal: s = fmt::format("normal({:g}, {:g})", a, b); break;
+    case DistributionKind::lognormal: s = fmt::format("lognormal(median {:g}, sigma_log {:g})", a, b); break;
+    case DistributionKind::triangular: s = fmt::format("triangular({:g}, {:g}, {:g})", a, c, b); break;
+  }
+  if (lower || upper)
+    s += fmt::format(" on [{}, {}]", lower ? fmt::format("{:g}", *lower) : "-inf", upper ? fmt::format("{:g}", *upper) : "inf");
+  return s;
+}
+
+std::size_t minimum_members(DesignMethod m, std::size_t d) {
+  switch (m) {
+    case DesignMethod::lhs: return 2;
+    case DesignMethod::sobol: return 2 * (d + 2);
+    case DesignMethod::morris: return 2 * (d + 1);
+  }
+  return 2;
+}
+
+namespace {
+
+Distribution read_distribution(const TomlTable& t) {
+  Distribution d;
+  const std::string kind = t.string("distribution");
+  auto positive = [&](const std::string& key) {
+    const double v = t.number(key);
+    if (!(v > 0)) throw t.error(key, fmt::format("must be > 0 (got {:g})", v));
+    return v;
+  };
+  if (kind == "uniform") {
+    d.kind = DistributionKind::uniform;
+    d.a = t.number("lower");
+    d.b = t.number("upper");
+    if (!(d.a < d.b)) throw t.error("upper", fmt::format("uniform bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
+    t.reject_unknown({"path", "paths", "distribution", "lower", "upper"});
+    return d;
+  }
+  if (kind == "triangular") {
+    d.kind = DistributionKind::triangular;
+    d.a = t.number("lower");
+    d.c = t.number("mode");
+    d.b = t.number("upper");
+    if (!(d.a < d.b)) throw t.error("upper", fmt::format("triangular bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
+    if (d.c < d.a || d.c > d.b) throw t.error("mode", fmt::format("mode {:g} outside [lower, upper] = [{:g}, {:g}]", d.c, d.a, d.b));
+    t.reject_unknown({"path", "paths", "distribution", "lower", "mode", "upper"});
+    return d;
+  }
+  if (kind == "normal") {
+    d.kind = DistributionKind::normal;
+    d.a = t.number("mean");
+    d.b = positive("std");
+    t.reject_unknown({"path", "paths", "distribution", "mean", "std", "lower", "upper"});
+  } else if (kind == "lognormal") {
+    d.kind = DistributionKind::lognormal;
+    d.a = positive("median");
+    d.b = positive("sigma_log");
+    t.reject_unknown({"path", "paths", "distribution", "median", "sigma_log", "lower", "upper"});
+  } else {
+    throw t.error("distribution", fmt::format("unknown distribution '{}' (expected uniform, normal, lognormal or triangular; "
+                                              "normal and lognormal take lower/upper to truncate)", kind));
+  }
+  d.lower = t.number_opt("lower");
+  d.upper = t.number_opt("upper");
+  if (d.lower && d.upper && !(*d.lower < *d.upper))
+    throw t.error("upper", fmt::format("truncation bounds reversed or equal: lower {:g} >= upper {:g}", *d.lower, *d.upper));
+  // The truncation must leave some probability: at least 1e-6 of the untruncated law.
+  if (d.lower || d.upper) {
+    Distribution base = d;
+    base.lower.reset();
+    base.upper.reset();
+    const double lo = d.lower ? *d.lower : -std::numeric_limits<double>::infinity();
+    const double hi = d.upper ? *d.upper : std::numeric_limits<double>::infinity();
+    if (base.kind == DistributionKind::lognormal && hi <= 0)
+      throw t.error("upper", fmt::format("a lognormal law has no probability below {:g}", hi));
+    const double q0 = quantile(base, 1e-7), q1 = quantile(base, 1 - 1e-7);
+    if (hi < q0 || lo > q1)
+      throw t.error(d.lower ? "lower" : "upper",
+                    fmt::format("the truncation [{:g}, {:g}] leaves no probability of {}", lo, hi, base.describe()));
+  }
+  return d;
+}
+
+}  // namespace
+
+EnsembleSpec read_spec(const std::string& path) {
+  const TomlTable root = TomlTable::parse_file(path);
+  root.reject_unknown({"design", "parameter"});
+  EnsembleSpec s;
+  s.path = path;
+  const TomlTable design = root.table("design");
+  design.reject_unknown({"method", "members", "seed", "levels"});
+  const std::string method = design.string("method");
+  if (method == "lhs") s.method = DesignMethod::lhs;
+  else if (method == "sobol") s.method = DesignMethod::sobol;
+  else if (method == "morris") s.method = DesignMethod::morris;
+  else throw design.error("method", fmt::format("unknown design '{}' (expected lhs, sobol or morris)", method));
+  const long long members = design.integer("members");
+  if (members < 1 || members > 10'000'000) throw design.error("members", fmt::format("{} members (expected 1 to 10000000)", members));
+  s.members = static_cast<std::size_t>(members);
+  const long long seed = design.integer_opt("seed").value_or(1);
+  if (seed < 0) throw design.error("seed", "must be >= 0");
+  s.seed = static_cast<std::uint64_t>(seed);
+  const long long levels = design.integer_opt("levels").value_or(4);
+  if (levels < 2 || levels % 2 != 0 || levels > 1000)
+    throw design.error("levels", fmt::format("{} Morris levels (expected an even number from 2 to 1000)", levels));
+  if (design.has("levels") && s.method != DesignMethod::morris) throw design.error("levels", "only the morris design has levels");
+  s.levels = static_cast<int>(levels);
+
+  const auto params = root.tables("parameter");
+  if (params.empty()) throw InputError(path, "no [[parameter]] (expected at least one uncertain parameter)");
+  std::set<std::string> seen;
+  for (const auto& t : params) {
+    Parameter p;
+    p.where = t.where();
+    if (t.has("path") == t.has("paths")) throw t.error("path", "give either path = \"...\" or paths = [...]");
+    p.paths = t.has("path") ? std::vector<std::string>{t.string("path")} : t.strings("paths");
+    if (p.paths.empty()) throw t.error("paths", "is empty");
+    for (const auto& q : p.paths)
+      if (!seen.insert(q).second) throw t.error(t.has("path") ? "path" : "paths", fmt::format("'{}' is named twice", q));
+    p.name = p.paths.front();
+    p.distribution = read_distribution(t);
+    s.parameters.push_back(std::move(p));
+  }
+  const std::size_t need = minimum_members(s.method, s.parameters.size());
+  if (s.members < need)
+    throw design.error("members", fmt::format("{} members are fewer than the {} design needs with {} parameters (at least {})",
+                                              s.members, method, s.parameters.size(), need));
+  return s;
+}
+
+void check_against_case(const EnsembleSpec& spec, const insar::CaseTemplate& tmpl) {
+  std::vector<insar::ParameterSpec> ps;
+  for (const auto& p : spec.parameters) {
+    insar::ParameterSpec q;
+    q.name = p.name;
+    q.paths = p.paths;
+    const Distribution& d = p.distribution;
+    q.lower = d.kind == DistributionKind::uniform || d.kind == DistributionKind::triangular ? d.a : quantile(d, 1e-3);
+    q.upper = d.kind == DistributionKind::uniform || d.kind == DistributionKind::triangular ? d.b : quantile(d, 1 - 1e-3);
+    ps.push_back(std::move(q));
+  }
+  insar::check_parameters(tmpl, ps, spec.path);
+}
+
+}  // namespace ugs::ensemble

@@ -1,0 +1,120 @@
+// The ensemble file: what it accepts, the one-line errors for what it refuses, and the designs'
+// sizes and determinism.
+#include <gtest/gtest.h>
+
+#include "run_tool.hpp"
+#include "ugs/ensemble/design.hpp"
+#include "ugs/ensemble/spec.hpp"
+#include "ugs/formats/error.hpp"
+
+using namespace ugs;
+using namespace ugs::ensemble;
+
+namespace {
+
+std::string error_of(const std::string& text) {
+  const auto dir = test::temp_dir("spec");
+  test::spit(dir / "e.toml", text);
+  try {
+    (void)read_spec((dir / "e.toml").string());
+  } catch (const InputError& e) {
+    std::filesystem::remove_all(dir);
+    return e.what();
+  }
+  std::filesystem::remove_all(dir);
+  return "";
+}
+
+const char* kTwo = R"(
+[[parameter]]
+path = "material.pool_c.c_R"
+distribution = "uniform"
+lower = 2.0
+upper = 6.0
+
+[[parameter]]
+paths = ["initial_stress.k0", "initial_stress.k_Hmax"]
+distribution = "normal"
+mean = 0.9
+std = 0.05
+lower = 0.8
+)";
+
+EnsembleSpec spec_of(const std::string& text) {
+  const auto dir = test::temp_dir("spec-ok");
+  test::spit(dir / "e.toml", text);
+  EnsembleSpec s = read_spec((dir / "e.toml").string());
+  std::filesystem::remove_all(dir);
+  return s;
+}
+
+}  // namespace
+
+TEST(EnsembleSpec, ReadsParametersAndDistributions) {
+  const EnsembleSpec s = spec_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 10\nseed = 3\n") + kTwo);
+  ASSERT_EQ(s.parameters.size(), 2u);
+  EXPECT_EQ(s.parameters[1].paths.size(), 2u);
+  EXPECT_EQ(s.parameters[1].distribution.kind, DistributionKind::normal);
+  EXPECT_EQ(*s.parameters[1].distribution.lower, 0.8);
+  EXPECT_FALSE(s.parameters[1].distribution.upper);
+  EXPECT_EQ(s.seed, 3u);
+}
+
+TEST(EnsembleSpec, BadInputIsOneLineNamingTheKey) {
+  const std::string head = "[design]\nmethod = \"sobol\"\nmembers = 8\n";
+  // 2 parameters: Sobol' needs 2 (2 + 2) = 8 members; 7 are too few.
+  EXPECT_EQ(error_of(head + kTwo), "");
+  const std::string few = error_of("[design]\nmethod = \"sobol\"\nmembers = 7\n" + std::string(kTwo));
+  EXPECT_NE(few.find(":3: 'design.members': 7 members"), std::string::npos) << few;
+  EXPECT_NE(few.find("fewer than the sobol design needs with 2 parameters (at least 8)"), std::string::npos) << few;
+  const std::string morris = error_of("[design]\nmethod = \"morris\"\nmembers = 5\n" + std::string(kTwo));
+  EXPECT_NE(morris.find("(at least 6)"), std::string::npos) << morris;
+  const std::string rev = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"uniform\"\nlower = 6.0\nupper = 2.0\n");
+  EXPECT_NE(rev.find(":8: 'parameter[0].upper': uniform bounds reversed or equal: lower 6 >= upper 2"), std::string::npos) << rev;
+  const std::string sd = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"normal\"\nmean = 1.0\nstd = -1.0\n");
+  EXPECT_NE(sd.find("'parameter[0].std': must be > 0 (got -1)"), std::string::npos) << sd;
+  const std::string mode = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"triangular\"\nlower = 1.0\nmode = 3.0\nupper = 2.0\n");
+  EXPECT_NE(mode.find("'parameter[0].mode': mode 3 outside [lower, upper] = [1, 2]"), std::string::npos) << mode;
+  const std::string trunc = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"normal\"\nmean = 0.0\nstd = 1.0\nlower = 50.0\n");
+  EXPECT_NE(trunc.find("leaves no probability"), std::string::npos) << trunc;
+  const std::string kind = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"weibull\"\n");
+  EXPECT_NE(kind.find("unknown distribution 'weibull'"), std::string::npos) << kind;
+  const std::string twice = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"uniform\"\nlower = 1.0\nupper = 2.0\n"
+                                            "[[parameter]]\npath = \"a\"\ndistribution = \"uniform\"\nlower = 1.0\nupper = 2.0\n");
+  EXPECT_NE(twice.find("'a' is named twice"), std::string::npos) << twice;
+  const std::string unknown = error_of(head + "[[parameter]]\npath = \"a\"\ndistribution = \"uniform\"\nlower = 1.0\nupper = 2.0\nmean = 3.0\n");
+  EXPECT_NE(unknown.find("mean"), std::string::npos) << unknown;
+  EXPECT_NE(error_of("[design]\nmethod = \"grid\"\nmembers = 8\n" + std::string(kTwo)).find("unknown design 'grid'"), std::string::npos);
+  EXPECT_NE(error_of("[design]\nmethod = \"lhs\"\nmembers = 8\n").find("no [[parameter]]"), std::string::npos);
+}
+
+TEST(EnsembleDesign, SizesBoundsAndSameSeedSameMembers) {
+  const EnsembleSpec lhs = spec_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 50\nseed = 11\n") + kTwo);
+  const Design a = make_design(lhs), b = make_design(lhs);
+  ASSERT_EQ(a.x.size(), 50u);
+  EXPECT_EQ(a.x, b.x);  // bit for bit
+  // One member in each of the 50 equally likely strata of each parameter.
+  std::vector<int> strata(50, 0);
+  for (const auto& x : a.x) {
+    EXPECT_GE(x[0], 2.0);
+    EXPECT_LE(x[0], 6.0);
+    EXPECT_GE(x[1], 0.8);  // truncated normal
+    ++strata[static_cast<std::size_t>((x[0] - 2.0) / 4.0 * 50)];
+  }
+  for (int c : strata) EXPECT_EQ(c, 1);
+  EnsembleSpec other = lhs;
+  other.seed = 12;
+  EXPECT_NE(make_design(other).x, a.x);
+
+  const EnsembleSpec sobol = spec_of(std::string("[design]\nmethod = \"sobol\"\nmembers = 34\n") + kTwo);
+  const Design s = make_design(sobol);
+  EXPECT_EQ(s.base, 8u);  // 34 / (2 + 2)
+  ASSERT_EQ(s.x.size(), 32u);
+  // Block 2 + i is A with column i from B.
+  for (std::size_t k = 0; k < 8; ++k) {
+    EXPECT_EQ(s.x[16 + k][0], s.x[8 + k][0]);
+    EXPECT_EQ(s.x[16 + k][1], s.x[k][1]);
+    EXPECT_EQ(s.x[24 + k][1], s.x[8 + k][1]);
+    EXPECT_EQ(s.x[24 + k][0], s.x[k][0]);
+  }
+}
