@@ -91,7 +91,7 @@ private:
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
   // neighbours, and the cut is held to the bound where the input was better.
   double score(std::uint32_t t, const Tet& e) const {
-    const double ref = std::min(s_.bound_deg, s_.parent_quality[s_.tet_parent[t]]);
+    const double ref = std::min(s_.bound_deg, s_.parent.quality(s_.tet_parent[t]));
     return quality(e) / std::max(ref, 1e-9);
   }
   bool in_band(const Tet& t) const {
@@ -215,7 +215,7 @@ private:
       double len[4][4] = {}, longest = 0;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) longest = std::max(longest, len[i][j] = norm(sub(X(e[i]), X(e[j]))));
-      const double shortest = s_.parent_min_edge[s_.tet_parent[t]];
+      const double shortest = s_.parent.min_edge(s_.tet_parent[t]);
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
           const double ref = !node_faults_[e[i]].empty() && !node_faults_[e[j]].empty() ? shortest : longest;
@@ -508,6 +508,25 @@ private:
 };
 
 }  // namespace
+
+double InputTetShape::quality(std::uint32_t p) const {
+  if (quality_[p] == kUnknown) {
+    const auto& e = tets_[p];
+    quality_[p] = min_dihedral_angle_deg(nodes_[e[0]], nodes_[e[1]], nodes_[e[2]], nodes_[e[3]]);
+  }
+  return quality_[p];
+}
+
+double InputTetShape::min_edge(std::uint32_t p) const {
+  if (min_edge_[p] == kUnknown) {
+    const auto& e = tets_[p];
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, vec3::norm(vec3::sub(nodes_[e[i]], nodes_[e[j]])));
+    min_edge_[p] = shortest;
+  }
+  return min_edge_[p];
+}
 
 BandImprovement improve_cut_band(ElementSoup soup, std::size_t first_new, double ratio, double smooth_below_deg, double tol) {
   if (first_new >= soup.nodes.size()) return {};

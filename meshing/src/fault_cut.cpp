@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <unordered_map>
@@ -214,11 +215,6 @@ public:
           T_.push_back({e[0], e[1], e[2], e[3]});
           Tb_.push_back(static_cast<std::uint32_t>(b));
           Tp_.push_back(static_cast<std::uint32_t>(Tp_.size()));
-          parent_quality_.push_back(min_dihedral_angle_deg(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
-          double shortest = std::numeric_limits<double>::infinity();
-          for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, norm(sub(X_[e[i]], X_[e[j]])));
-          parent_min_edge_.push_back(shortest);
         }
       else if (blk.type == ElementType::Triangle)
         for (std::size_t i = 0; i < blk.size(); ++i) {
@@ -227,6 +223,7 @@ public:
           Fb_.push_back(static_cast<std::uint32_t>(b));
         }
     }
+    parent_.emplace(X_, T_);
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
@@ -553,7 +550,7 @@ public:
   // Steps 5 and 6: collapse of short edges and smoothing in the band the cut made
   // (cut_band_improvement.hpp).
   BandImprovement improve(std::size_t first_new, double ratio, double smooth_below_deg, double bound_deg) {
-    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), parent_quality_, parent_min_edge_, bound_deg},
+    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), *parent_, bound_deg},
                             first_new, ratio, smooth_below_deg, tol_);
   }
 
@@ -571,7 +568,7 @@ public:
       if (t[0] < first_new && t[1] < first_new && t[2] < first_new && t[3] < first_new) continue;
       ++q.tetrahedra;
       const double a = min_dihedral_angle_deg(X_[t[0]], X_[t[1]], X_[t[2]], X_[t[3]]);
-      const double ref = std::min(bound_deg, parent_quality_[Tp_[i]]);
+      const double ref = std::min(bound_deg, parent_->quality(Tp_[i]));
       q.min_deg = std::min(q.min_deg, a);
       q.below_reference += a < ref;
       q.below_bound += a < fraction * ref;
@@ -725,8 +722,7 @@ private:
   std::vector<std::array<std::uint32_t, 4>> T_;
   std::vector<std::uint32_t> Tb_;
   std::vector<std::uint32_t> Tp_;         // the input tetrahedron each one comes from
-  std::vector<double> parent_quality_;    // smallest dihedral angle of each input tetrahedron
-  std::vector<double> parent_min_edge_;   // shortest edge of each input tetrahedron
+  std::optional<InputTetShape> parent_;   // the input tetrahedra's shape (by Tp_)
   std::vector<std::array<std::uint32_t, 3>> F_;
   std::vector<std::uint32_t> Fb_;
   std::vector<const CutPanel*> done_;  // the panels cut so far
