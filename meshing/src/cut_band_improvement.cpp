@@ -27,6 +27,8 @@ Face sorted(Face f) {
   return f;
 }
 
+bool same(const Face& a, const Face& b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+
 template <class E>
 bool has(const E& e, std::uint32_t v) {
   return std::find(e.begin(), e.end(), v) != e.end();
@@ -64,6 +66,7 @@ public:
   BandImprovement run() {
     BandImprovement r;
     tet_dead_.assign(s_.tets.size(), 0);
+    find_band();
     tri_dead_.assign(s_.tris.size(), 0);
     node_dead_.assign(s_.nodes.size(), 0);
     if (ratio_ > 0)
@@ -91,21 +94,41 @@ private:
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
   // neighbours, and the cut is held to the bound where the input was better.
   double score(std::uint32_t t, const Tet& e) const {
-    const double ref = std::min(s_.bound_deg, s_.parent_quality[s_.tet_parent[t]]);
+    const double ref = std::min(s_.bound_deg, s_.parent.quality(s_.tet_parent[t]));
     return quality(e) / std::max(ref, 1e-9);
   }
   bool in_band(const Tet& t) const {
     return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
   }
 
-  // Incidences of the nodes flagged in `want` (alive elements only).
+  // The band's tetrahedra, and the tetrahedra around the band's nodes (one scan of the mesh: the
+  // passes then visit only these). A tetrahedron never enters the band (a collapse replaces a cut
+  // node by a neighbour), and the nodes the passes ask about are the band's.
+  void find_band() {
+    std::vector<char> in_w(s_.nodes.size(), 0);
+    for (std::size_t t = 0; t < s_.tets.size(); ++t)
+      if (in_band(s_.tets[t])) {
+        band_.push_back(static_cast<std::uint32_t>(t));
+        for (auto v : s_.tets[t]) in_w[v] = 1;
+      }
+    around_.assign(s_.nodes.size(), {});
+    for (std::size_t t = 0; t < s_.tets.size(); ++t)
+      for (auto v : s_.tets[t])
+        if (in_w[v]) around_[v].push_back(static_cast<std::uint32_t>(t));
+  }
+
+  // Incidences of the nodes flagged in `want` (alive elements only), in increasing order.
   void build_adjacency(const std::vector<char>& want) {
     tets_of_.assign(s_.nodes.size(), {});
     tris_of_.assign(s_.nodes.size(), {});
-    for (std::size_t t = 0; t < s_.tets.size(); ++t)
-      if (!tet_dead_[t])
-        for (auto v : s_.tets[t])
-          if (want[v]) tets_of_[v].push_back(static_cast<std::uint32_t>(t));
+    for (std::size_t v = 0; v < want.size(); ++v) {
+      if (!want[v]) continue;
+      auto& l = tets_of_[v];
+      for (auto t : around_[v])
+        if (!tet_dead_[t] && has(s_.tets[t], static_cast<std::uint32_t>(v))) l.push_back(t);
+      std::sort(l.begin(), l.end());
+      l.erase(std::unique(l.begin(), l.end()), l.end());
+    }
     for (std::size_t i = 0; i < s_.tris.size(); ++i)
       if (!tri_dead_[i])
         for (auto v : s_.tris[i])
@@ -119,31 +142,33 @@ private:
   bool surfaces_of(std::uint32_t v, Surfaces& out) const {
     // Flat sorted vectors rather than maps: this runs for every node the collapse and the smoothing
     // look at (millions of calls at the thesis scale), and the sets are a few dozen entries.
-    std::vector<std::pair<std::uint64_t, Face>> faces;
+    // Scratch arrays kept between calls (malloc and free were about 7 % of the samples).
+    auto& faces = scratch_.faces;
+    auto& around = scratch_.around;
+    auto& between = scratch_.between;
+    auto& outer = scratch_.outer;
+    auto& at_edge = scratch_.at_edge;
+    faces.clear();
+    around.clear();
+    between.clear();
+    outer.clear();
+    at_edge.clear();
     for (auto i : tris_of_[v]) faces.push_back({s_.tri_group[i], s_.tris[i]});
-    struct Around {
-      Face key, tri;
-      std::uint32_t block;
-      std::uint32_t order;  // position among the faces met, for the pairing below
-    };
-    std::vector<Around> around;
-    around.reserve(3 * tets_of_[v].size());
     for (auto t : tets_of_[v])
       for (const auto& f : kFaceOf) {
         const Face tri{s_.tets[t][f[0]], s_.tets[t][f[1]], s_.tets[t][f[2]]};
         if (!has(tri, v)) continue;
         around.push_back({sorted(tri), tri, s_.tet_block[t], static_cast<std::uint32_t>(around.size())});
       }
+    // Field by field: std::array's == went through memcmp (6 % of the thesis bench's samples).
     std::sort(around.begin(), around.end(), [](const Around& a, const Around& b) {
-      return a.key != b.key ? a.key < b.key : a.order < b.order;
+      return std::tie(a.key[0], a.key[1], a.key[2], a.order) < std::tie(b.key[0], b.key[1], b.key[2], b.order);
     });
     // Faces between two materials in the order they were met (the second use of a key), then the
     // outer faces (one use) in key order: as the maps this replaces gave them.
-    std::vector<std::pair<std::uint32_t, std::pair<std::uint64_t, Face>>> between;
-    std::vector<std::pair<std::uint64_t, Face>> outer;
     for (std::size_t i = 0; i < around.size();) {
       std::size_t j = i + 1;
-      while (j < around.size() && around[j].key == around[i].key) ++j;
+      while (j < around.size() && same(around[j].key, around[i].key)) ++j;
       if (j - i == 1) outer.push_back({std::uint64_t{1} << 63, around[i].tri});
       for (std::size_t k = i + 1; k < j; ++k)
         if (around[i].block != around[k].block) {
@@ -157,15 +182,6 @@ private:
     faces.insert(faces.end(), outer.begin(), outer.end());
     auto exact = [&](std::uint64_t g) { return !(g >= s_.first_fault_group && g < (std::uint64_t{1} << 62)); };
     // Per (group, edge v-w): the faces' normals and third nodes.
-    struct EdgeFace {
-      std::uint64_t group;
-      std::uint32_t w;
-      std::uint32_t order;
-      Point3 n;
-      std::uint32_t third;
-    };
-    std::vector<EdgeFace> at_edge;
-    at_edge.reserve(2 * faces.size());
     for (const auto& [g, f] : faces) {
       const Point3 n = cross(sub(X(f[1]), X(f[0])), sub(X(f[2]), X(f[0])));
       const double nn = norm(n);
@@ -205,7 +221,7 @@ private:
         for (auto v : s_.tris[i])
           if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
     for (auto& g : node_faults_) std::sort(g.begin(), g.end());
-    for (std::size_t t = 0; t < s_.tets.size(); ++t) {
+    for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const auto& e = s_.tets[t];
       // Short: against the longest edge of the tetrahedron, except between two nodes of a fault,
@@ -215,7 +231,7 @@ private:
       double len[4][4] = {}, longest = 0;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) longest = std::max(longest, len[i][j] = norm(sub(X(e[i]), X(e[j]))));
-      const double shortest = s_.parent_min_edge[s_.tet_parent[t]];
+      const double shortest = s_.parent.min_edge(s_.tet_parent[t]);
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
           const double ref = !node_faults_[e[i]].empty() && !node_faults_[e[j]].empty() ? shortest : longest;
@@ -379,7 +395,10 @@ private:
       if (has(s_.tets[t], a)) tet_dead_[t] = 1;
     for (auto i : tris_of_[b])
       if (has(s_.tris[i], a)) tri_dead_[i] = 1;
-    for (const auto& [t, e] : changed) s_.tets[t] = e;
+    for (const auto& [t, e] : changed) {
+      s_.tets[t] = e;
+      around_[a].push_back(t);
+    }
     for (const auto& [i, f] : changed_tris) s_.tris[i] = f;
     node_faults_[a] = std::move(fa);
     node_dead_[b] = 1;
@@ -391,7 +410,7 @@ private:
     std::vector<char> want(s_.nodes.size(), 0);
     std::vector<std::pair<double, std::uint32_t>> order;  // (worst score, node)
     std::vector<double> worst(s_.nodes.size(), 180);
-    for (std::size_t t = 0; t < s_.tets.size(); ++t) {
+    for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const double q = score(static_cast<std::uint32_t>(t), s_.tets[t]);
       if (!(q < 1) && !(quality(s_.tets[t]) < smooth_below_)) continue;
@@ -498,16 +517,56 @@ private:
     s_.tri_group.resize(k);
   }
 
+  struct Around {
+    Face key, tri;
+    std::uint32_t block;
+    std::uint32_t order;  // position among the faces met, for the pairing in surfaces_of
+  };
+  struct EdgeFace {
+    std::uint64_t group;
+    std::uint32_t w;
+    std::uint32_t order;
+    Point3 n;
+    std::uint32_t third;
+  };
+  struct Scratch {
+    std::vector<std::pair<std::uint64_t, Face>> faces, outer;
+    std::vector<Around> around;
+    std::vector<std::pair<std::uint32_t, std::pair<std::uint64_t, Face>>> between;
+    std::vector<EdgeFace> at_edge;
+  };
+  mutable Scratch scratch_;  // surfaces_of's arrays
   ElementSoup s_;
   std::size_t first_new_;
   double ratio_, smooth_below_, tol_;
   double round_;  // "to rounding": a thousandth of the on-plane tolerance (1e-10 of the model's size)
   std::vector<char> tet_dead_, tri_dead_, node_dead_;
   std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;
+  std::vector<std::uint32_t> band_;                   // the band's tetrahedra at the start, increasing
+  std::vector<std::vector<std::uint32_t>> around_;   // per band node: tetrahedra that held it (may be stale)
   std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
 };
 
 }  // namespace
+
+double InputTetShape::quality(std::uint32_t p) const {
+  if (quality_[p] == kUnknown) {
+    const auto& e = tets_[p];
+    quality_[p] = min_dihedral_angle_deg(nodes_[e[0]], nodes_[e[1]], nodes_[e[2]], nodes_[e[3]]);
+  }
+  return quality_[p];
+}
+
+double InputTetShape::min_edge(std::uint32_t p) const {
+  if (min_edge_[p] == kUnknown) {
+    const auto& e = tets_[p];
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, vec3::norm(vec3::sub(nodes_[e[i]], nodes_[e[j]])));
+    min_edge_[p] = shortest;
+  }
+  return min_edge_[p];
+}
 
 BandImprovement improve_cut_band(ElementSoup soup, std::size_t first_new, double ratio, double smooth_below_deg, double tol) {
   if (first_new >= soup.nodes.size()) return {};

@@ -5,11 +5,29 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "ugs/formats/mesh.hpp"
 
 namespace ugs {
+
+// Smallest dihedral angle and shortest edge of each input tetrahedron (on its input nodes),
+// computed the first time they are asked for: the cut and its band ask for a few thousand of the
+// millions (computing them all cost about a second at the thesis scale).
+class InputTetShape {
+public:
+  InputTetShape(std::vector<Point3> nodes, std::vector<std::array<std::uint32_t, 4>> tets)
+      : nodes_(std::move(nodes)), tets_(std::move(tets)), quality_(tets_.size(), kUnknown), min_edge_(tets_.size(), kUnknown) {}
+  double quality(std::uint32_t p) const;
+  double min_edge(std::uint32_t p) const;
+
+private:
+  static constexpr double kUnknown = -std::numeric_limits<double>::infinity();
+  std::vector<Point3> nodes_;
+  std::vector<std::array<std::uint32_t, 4>> tets_;
+  mutable std::vector<double> quality_, min_edge_;
+};
 
 // A tetrahedral mesh as flat arrays: nodes, tetrahedra (positive volume) with their block,
 // triangles (boundary and other groups) with their group; groups from `first_fault_group` on are
@@ -22,8 +40,7 @@ struct ElementSoup {
   std::vector<std::array<std::uint32_t, 3>>& tris;
   std::vector<std::uint32_t>& tri_group;
   std::uint32_t first_fault_group;
-  const std::vector<double>& parent_quality;   // smallest dihedral angle of each input tetrahedron (by tet_parent)
-  const std::vector<double>& parent_min_edge;  // shortest edge of each input tetrahedron
+  const InputTetShape& parent;                // the input tetrahedra (by tet_parent)
   double bound_deg;                           // see score() in the .cpp and FaultCutOptions::bound_deg
 };
 

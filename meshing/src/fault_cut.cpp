@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <unordered_map>
@@ -214,11 +215,6 @@ public:
           T_.push_back({e[0], e[1], e[2], e[3]});
           Tb_.push_back(static_cast<std::uint32_t>(b));
           Tp_.push_back(static_cast<std::uint32_t>(Tp_.size()));
-          parent_quality_.push_back(min_dihedral_angle_deg(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
-          double shortest = std::numeric_limits<double>::infinity();
-          for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, norm(sub(X_[e[i]], X_[e[j]])));
-          parent_min_edge_.push_back(shortest);
         }
       else if (blk.type == ElementType::Triangle)
         for (std::size_t i = 0; i < blk.size(); ++i) {
@@ -227,6 +223,9 @@ public:
           Fb_.push_back(static_cast<std::uint32_t>(b));
         }
     }
+    parent_.emplace(X_, T_);
+    for (std::size_t i = 0; i < T_.size(); ++i) link(tets_at_, T_[i], static_cast<std::uint32_t>(i));
+    for (std::size_t i = 0; i < F_.size(); ++i) link(tris_at_, F_[i], static_cast<std::uint32_t>(i));
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
@@ -264,19 +263,16 @@ public:
     std::vector<std::pair<double, std::uint32_t>> order;
     for (const auto& [v, t] : score) order.push_back({t, v});
     std::sort(order.begin(), order.end());
-    // Candidate number of each node (a dense table: the scans below visit every tetrahedron and
-    // triangle of the model once per panel, where a hash lookup per node cost seconds).
-    std::vector<std::uint32_t> cand_index(X_.size(), none);
-    for (std::size_t c = 0; c < order.size(); ++c) cand_index[order[c].second] = static_cast<std::uint32_t>(c);
     std::vector<std::vector<std::uint32_t>> tets_of(order.size());
     std::vector<std::vector<Point3>> normals(order.size());
-    for (std::size_t t = 0; t < T_.size(); ++t)
-      for (int k = 0; k < 4; ++k)
-        if (const std::uint32_t c = cand_index[T_[t][k]]; c != none) tets_of[c].push_back(static_cast<std::uint32_t>(t));
-    for (const auto& f : F_)
-      for (int k = 0; k < 3; ++k)
-        if (const std::uint32_t c = cand_index[f[k]]; c != none)
-          normals[c].push_back(unit(cross(sub(X_[f[1]], X_[f[0]]), sub(X_[f[2]], X_[f[0]]))));
+    for (std::size_t c = 0; c < order.size(); ++c) {
+      const std::uint32_t v = order[c].second;
+      tets_of[c] = sorted_at(tets_at_, v);
+      for (auto i : sorted_at(tris_at_, v)) {
+        const auto& f = F_[i];
+        normals[c].push_back(unit(cross(sub(X_[f[1]], X_[f[0]]), sub(X_[f[2]], X_[f[0]]))));
+      }
+    }
     static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     for (std::size_t c = 0; c < order.size(); ++c) {
       const std::uint32_t v = order[c].second;
@@ -433,7 +429,8 @@ public:
     };
     std::vector<Cand> cands;
     std::unordered_set<std::uint64_t> seen;
-    for (const auto& t : T_) {
+    for (auto i : elements_at(tets_at_, on)) {
+      const auto& t = T_[i];
       int count = on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]];
       if (count < 2) continue;
       for (int i = 0; i < 4; ++i)
@@ -468,7 +465,8 @@ public:
     std::vector<char> on(n);
     for (std::size_t i = 0; i < n; ++i) on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
     static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (const auto& t : T_) {
+    for (auto i : elements_at(tets_at_, on)) {
+      const auto& t = T_[i];
       if (on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]] < 3) continue;
       for (const auto& f : face_of) {
         std::array<std::uint32_t, 3> tri{t[f[0]], t[f[1]], t[f[2]]};
@@ -496,6 +494,7 @@ public:
   // so that later bisections split them too.
   void add_fault_faces(std::size_t f, const std::vector<std::array<std::uint32_t, 3>>& faces) {
     for (const auto& t : faces) {
+      link(tris_at_, t, static_cast<std::uint32_t>(F_.size()));
       F_.push_back(t);
       Fb_.push_back(static_cast<std::uint32_t>(mesh_.blocks.size() + f));
     }
@@ -520,8 +519,12 @@ public:
         }
       }
       EdgeMap marked;
-      for (const auto& t : T_)
+      std::vector<char> on_any(X_.size(), 0);
+      for (const auto& o : on)
+        for (std::size_t v = 0; v < X_.size(); ++v) on_any[v] |= o[v];
+      for (auto ti : elements_at(tets_at_, on_any))
         for (std::size_t f = 0; f < nfaults; ++f) {
+          const auto& t = T_[ti];
           if (!(on[f][t[0]] && on[f][t[1]] && on[f][t[2]] && on[f][t[3]])) continue;
           double best = -1;
           std::uint32_t ba = 0, bb = 0;
@@ -553,7 +556,7 @@ public:
   // Steps 5 and 6: collapse of short edges and smoothing in the band the cut made
   // (cut_band_improvement.hpp).
   BandImprovement improve(std::size_t first_new, double ratio, double smooth_below_deg, double bound_deg) {
-    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), parent_quality_, parent_min_edge_, bound_deg},
+    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), *parent_, bound_deg},
                             first_new, ratio, smooth_below_deg, tol_);
   }
 
@@ -571,7 +574,7 @@ public:
       if (t[0] < first_new && t[1] < first_new && t[2] < first_new && t[3] < first_new) continue;
       ++q.tetrahedra;
       const double a = min_dihedral_angle_deg(X_[t[0]], X_[t[1]], X_[t[2]], X_[t[3]]);
-      const double ref = std::min(bound_deg, parent_quality_[Tp_[i]]);
+      const double ref = std::min(bound_deg, parent_->quality(Tp_[i]));
       q.min_deg = std::min(q.min_deg, a);
       q.below_reference += a < ref;
       q.below_bound += a < fraction * ref;
@@ -671,6 +674,48 @@ private:
     return false;
   }
 
+  // Node -> element incidences (unordered lists), kept up to date by apply, so that the work of a
+  // panel visits the elements around the nodes it concerns instead of the whole mesh.
+  using Incidence = std::vector<std::vector<std::uint32_t>>;
+  template <std::size_t K>
+  void link(Incidence& at, const std::array<std::uint32_t, K>& e, std::uint32_t i) {
+    for (auto v : e) {
+      if (v >= at.size()) at.resize(std::max<std::size_t>(v + 1, X_.size()));
+      at[v].push_back(i);
+    }
+  }
+  // Element i changed from `before` to `after`.
+  template <std::size_t K>
+  void relink(Incidence& at, const std::array<std::uint32_t, K>& before, const std::array<std::uint32_t, K>& after, std::uint32_t i) {
+    for (auto v : before)
+      if (std::find(after.begin(), after.end(), v) == after.end()) {
+        auto& l = at[v];
+        auto it = std::find(l.begin(), l.end(), i);
+        *it = l.back();
+        l.pop_back();
+      }
+    for (auto v : after)
+      if (std::find(before.begin(), before.end(), v) == before.end()) {
+        if (v >= at.size()) at.resize(std::max<std::size_t>(v + 1, X_.size()));
+        at[v].push_back(i);
+      }
+  }
+  std::vector<std::uint32_t> sorted_at(const Incidence& at, std::uint32_t v) const {
+    if (v >= at.size()) return {};
+    auto l = at[v];
+    std::sort(l.begin(), l.end());
+    return l;
+  }
+  // The elements holding a node flagged in `want`, in increasing order.
+  static std::vector<std::uint32_t> elements_at(const Incidence& at, const std::vector<char>& want) {
+    std::vector<std::uint32_t> out;
+    for (std::size_t v = 0; v < want.size() && v < at.size(); ++v)
+      if (want[v]) out.insert(out.end(), at[v].begin(), at[v].end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
   void apply(const EdgeMap& marked) {
     if (marked.empty()) return;
     std::vector<char> flag(X_.size(), 0);
@@ -678,29 +723,33 @@ private:
       flag[k >> 32] = 1;
       flag[k & 0xffffffffu] = 1;
     }
+    // Only elements holding a marked edge's end can split: those around the flagged nodes, in
+    // increasing order as a scan of all elements would meet them (children go to the end).
     std::vector<std::array<std::uint32_t, 4>> tets;
-    const std::size_t nt = T_.size();
-    for (std::size_t i = 0; i < nt; ++i) {
+    for (auto i : elements_at(tets_at_, flag)) {
       const auto t = T_[i];
       if (flag[t[0]] + flag[t[1]] + flag[t[2]] + flag[t[3]] < 2) continue;
       tets.clear();
       split_element<4>(t, marked, tets);
       T_[i] = tets[0];
+      relink(tets_at_, t, tets[0], i);
       for (std::size_t c = 1; c < tets.size(); ++c) {
+        link(tets_at_, tets[c], static_cast<std::uint32_t>(T_.size()));
         T_.push_back(tets[c]);
         Tb_.push_back(Tb_[i]);
         Tp_.push_back(Tp_[i]);
       }
     }
     std::vector<std::array<std::uint32_t, 3>> tris;
-    const std::size_t nf = F_.size();
-    for (std::size_t i = 0; i < nf; ++i) {
+    for (auto i : elements_at(tris_at_, flag)) {
       const auto f = F_[i];
       if (flag[f[0]] + flag[f[1]] + flag[f[2]] < 2) continue;
       tris.clear();
       split_element<3>(f, marked, tris);
       F_[i] = tris[0];
+      relink(tris_at_, f, tris[0], i);
       for (std::size_t c = 1; c < tris.size(); ++c) {
+        link(tris_at_, tris[c], static_cast<std::uint32_t>(F_.size()));
         F_.push_back(tris[c]);
         Fb_.push_back(Fb_[i]);
       }
@@ -725,10 +774,10 @@ private:
   std::vector<std::array<std::uint32_t, 4>> T_;
   std::vector<std::uint32_t> Tb_;
   std::vector<std::uint32_t> Tp_;         // the input tetrahedron each one comes from
-  std::vector<double> parent_quality_;    // smallest dihedral angle of each input tetrahedron
-  std::vector<double> parent_min_edge_;   // shortest edge of each input tetrahedron
+  std::optional<InputTetShape> parent_;   // the input tetrahedra's shape (by Tp_)
   std::vector<std::array<std::uint32_t, 3>> F_;
   std::vector<std::uint32_t> Fb_;
+  Incidence tets_at_, tris_at_;        // per node: the tetrahedra / triangles holding it
   std::vector<const CutPanel*> done_;  // the panels cut so far
   std::size_t snapped_ = 0;
 };
