@@ -178,7 +178,7 @@ private:
       rule.checkpoint_every = o_.checkpoint_every.value_or(R.cs.checkpoint_every);
       rule.turning_points = R.cs.steps == "turning-points";
       rule.turning_tolerance = R.cs.turning_point_tolerance;
-      if (faulted()) rule.must_take.insert(set_.ref_time);
+      if (set_.search) rule.must_take.insert(set_.ref_time);  // the search reruns from the state there
       steps_ = plan_steps(*root_->history, R.cs, rule);
       if (rule.turning_points) {
         log(1, fmt::format("turning-point steps: {} of {} dates (turning points of the pressure, output dates, the last date)",
