@@ -4,10 +4,11 @@
 // change that ugs-flow would write for the reservoir (node field dp on its sub-mesh, which holds the
 // fault's twin nodes, with parent node and element tags).
 //
-//   contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--cell M] [--extra TOML]
+//   contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--cell M] [--extra TOML] [--months N]
 //
 // --extra is appended to the [solver] table ("\n" separates lines).
-// Dates: 2000-01-01 (dp = 0, the reference of the scenario) and 2001-01-01 (dp).
+// Dates: 2000-01-01 (dp = 0, the reference of the scenario) and 2001-01-01 (dp); with --months N,
+// N + 1 monthly dates from 2000-01-01 with dp sin(2 pi k / 12) (a storage cycle: a low in October).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   }
   const fs::path dir = argv[1];
   double dp = 5.0, friction = 30, cohesion = 0, cell = 50;
+  int months = 0;
   std::string extra;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
@@ -46,6 +48,7 @@ int main(int argc, char** argv) {
     else if (k == "--friction") friction = std::atof(argv[i + 1]);
     else if (k == "--cohesion") cohesion = std::atof(argv[i + 1]);
     else if (k == "--cell") cell = std::atof(argv[i + 1]);
+    else if (k == "--months") months = std::atoi(argv[i + 1]);
     else if (k == "--extra") {
       extra = argv[i + 1];
       for (std::size_t p; (p = extra.find("\\n")) != std::string::npos;) extra.replace(p, 2, "\n");
@@ -99,10 +102,19 @@ linear_solver = "mumps"
 
   const Mesh sub = cases::submesh(m, {"reservoir"});
   FieldSeriesWriter w((dir / "flow.h5").string(), sub);
-  const char* dates[] = {"2000-01-01", "2001-01-01"};
-  for (int k = 0; k < 2; ++k) {
-    const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), k == 0 ? 0.0 : dp * 1e6)}};
-    w.add_step(dates[k], static_cast<double>(*parse_iso_date(dates[k])), f);
+  if (months > 0) {
+    for (int k = 0; k <= months; ++k) {
+      const std::string date = fmt::format("{:04d}-{:02d}-01", 2000 + k / 12, 1 + k % 12);
+      const double v = k % 6 == 0 ? 0.0 : dp * 1e6 * std::sin(2 * M_PI * k / 12);  // exact zeros
+      const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), v)}};
+      w.add_step(date, static_cast<double>(*parse_iso_date(date)), f);
+    }
+  } else {
+    const char* dates[] = {"2000-01-01", "2001-01-01"};
+    for (int k = 0; k < 2; ++k) {
+      const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), k == 0 ? 0.0 : dp * 1e6)}};
+      w.add_step(dates[k], static_cast<double>(*parse_iso_date(dates[k])), f);
+    }
   }
   w.commit();
   std::fprintf(stderr, "contact_make_case: %zu nodes, %zu tetrahedra, %zu interface elements; reservoir sub-mesh %zu nodes\n",

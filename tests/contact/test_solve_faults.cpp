@@ -8,11 +8,18 @@
 //    linear in the scale): safe <= s* <= critical, critical - safe <= 1 % of critical;
 //  - bad input exits 2 leaving no results: friction outside (0, 90), negative cohesion, a case
 //    fault that is not in the mesh, a mesh fault the case does not describe, interface elements
-//    without twins, --restart; a Newton failure with slipping pairs exits 1 naming the fault and
-//    its nodes;
+//    without twins, a missing restart state; a Newton failure with slipping pairs exits 1 naming
+//    the fault and its nodes;
+//  - a faulted run stopped at a date and restarted from its state (volume and fault pairs) writes
+//    the same numbers, bit for bit, as the uninterrupted run; checkpoints write the fault state;
+//  - turning-point steps on a faulted model (a storage cycle): the low and the last date only, with
+//    the results of every-date stepping there (linear rock, locked fault: path-independent);
 //  - the fault reaching a side with rollers (not fixed) converges, chi <= 1 in the faults CSV.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -217,7 +224,7 @@ TEST(SolveFaults, BadInputExitsTwoWithoutResults) {
     test::spit(d / "case.toml", t);
     expect2("mesh fault without an entry", "", "no [[fault]] entry named 'F'");
   }
-  expect2("restart", "--restart " + d / "nothing.h5", "--restart");
+  expect2("restart", "--restart " + d / "nothing.h5", "nothing.h5");
   {
     // Move the twin of one interface element's node: no twin any more.
     Mesh m = read_msh(d / "faulted.msh");
@@ -278,4 +285,104 @@ TEST(SolveFaults, FaultReachingRollersConverges) {
   EXPECT_LE(v[0], 1.0);
   EXPECT_LT(std::abs(v[8]), 50.0);  // max_cfs_change_MPa
   EXPECT_EQ(v[9], 15);              // node pairs in the statistics: all
+}
+
+namespace {
+
+// The values of every step of a field series at or after `from` (ISO dates compare as text), per
+// field name and date: compared with == (bit for bit).
+std::map<std::string, std::vector<double>> series_from(const std::string& h5, const std::string& from) {
+  FieldSeriesReader r(h5);
+  std::map<std::string, std::vector<double>> out;
+  for (std::size_t s = 0; s < r.steps().size(); ++s) {
+    if (r.steps()[s].date < from) continue;
+    for (const auto& n : r.node_field_names(s)) out[r.steps()[s].date + " node " + n] = r.node_field(s, n).values;
+    for (const auto& n : r.cell_field_names(s)) out[r.steps()[s].date + " cell " + n] = r.cell_field(s, n).values;
+  }
+  return out;
+}
+
+// The data rows of a CSV at or after `from` (rows start with the date).
+std::vector<std::string> rows_from(const std::string& csv, const std::string& from) {
+  std::vector<std::string> rows;
+  const std::string text = test::slurp(csv);
+  for (std::size_t p = 0; p < text.size();) {
+    const auto q = text.find('\n', p);
+    const std::string line = text.substr(p, q - p);
+    if (!line.empty() && line[0] != '#' && line.substr(0, 10) >= from && std::isdigit(static_cast<unsigned char>(line[0])))
+      rows.push_back(line);
+    p = q == std::string::npos ? text.size() : q + 1;
+  }
+  return rows;
+}
+
+}  // namespace
+
+// A storage cycle of 13 monthly dates: stopped after 2000-06-01 and restarted from the state saved
+// there (the volume state and <state>_faults.h5), the second piece writes exactly the numbers of
+// the uninterrupted run at the later dates — top surface, volume fields, fault fields and table.
+TEST(SolveFaults, RestartReproducesTheUninterruptedRunBitForBit) {
+  Dir d("solve-faults-restart");
+  ASSERT_EQ(test::run(make_case(d, "--dp 8 --friction 20 --cell 100 --months 12")).exit_code, 0);
+  auto r = test::run(solve(d, "-o " + d / "full.h5 --checkpoint-every 4 -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "full_state_faults.h5"));
+  r = test::run(solve(d, "-o " + d / "first.h5 --until 2000-06-01"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(d / "first_state.h5"));
+  ASSERT_TRUE(fs::exists(d / "first_state_faults.h5"));
+  r = test::run(solve(d, "-o " + d / "second.h5 --restart " + d / "first_state.h5 -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("restarting from"), std::string::npos) << r.err;
+  // Pairs slip and open from February to May (friction 20 degrees), so the state carried over
+  // from 2000-06-01 holds slip.
+  EXPECT_NE(r.err.find("step 7/7 (2001-01-01)"), std::string::npos) << r.err;
+  for (const char* suffix : {".h5", "_top.h5", "_faults.h5"}) {
+    const auto full = series_from(d / (std::string("full") + suffix), "2000-07-01");
+    const auto second = series_from(d / (std::string("second") + suffix), "2000-07-01");
+    ASSERT_EQ(full.size(), second.size()) << suffix;
+    EXPECT_FALSE(full.empty()) << suffix;
+    for (const auto& [key, values] : full) {
+      ASSERT_TRUE(second.count(key)) << suffix << " " << key;
+      EXPECT_TRUE(values == second.at(key)) << suffix << " " << key << " differs";
+    }
+  }
+  const auto full_rows = rows_from(d / "full_faults.csv", "2000-07-01");
+  EXPECT_EQ(full_rows.size(), 7u);
+  EXPECT_EQ(full_rows, rows_from(d / "second_faults.csv", "2000-07-01"));
+  // Without its fault state a volume state cannot restart a faulted run.
+  fs::remove(d / "first_state_faults.h5");
+  r = test::run(solve(d, "-o " + d / "bad.h5 --restart " + d / "first_state.h5"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("first_state_faults.h5"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(d / "bad.h5"));
+}
+
+// Turning-point steps on a faulted model: of the 13 dates of a storage cycle, the low (2000-10-01)
+// and the last date are stepped on; the rock is linear and the fault stays locked at this friction,
+// so the state there does not depend on the path and matches every-date stepping.
+TEST(SolveFaults, TurningPointStepsOnAFaultedModel) {
+  Dir d("solve-faults-turning");
+  ASSERT_EQ(test::run(make_case(d, "--dp 3 --friction 40 --cell 100 --months 12 --extra 'steps = \"turning-points\"'")).exit_code, 0);
+  auto r = test::run(solve(d, "-o " + d / "tp.h5 -v"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("turning-point steps: 2 of 13 dates"), std::string::npos) << r.err;
+  replace_in(d / "case.toml", "steps = \"turning-points\"", "steps = \"every-date\"");
+  r = test::run(solve(d, "-o " + d / "all.h5"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  FieldSeriesReader tp(d / "tp_faults.h5"), all(d / "all_faults.h5");
+  ASSERT_EQ(tp.steps().size(), 2u);
+  EXPECT_EQ(tp.steps()[0].date, "2000-10-01");
+  EXPECT_EQ(tp.steps()[1].date, "2001-01-01");
+  for (std::size_t s = 0; s < 2; ++s) {
+    const std::size_t k = all.step(tp.steps()[s].date);
+    const auto a = all.node_field(k, "traction").values, b = tp.node_field(s, "traction").values;
+    ASSERT_EQ(a.size(), b.size());
+    double worst = 0, scale = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i])), scale = std::max(scale, std::abs(a[i]));
+    EXPECT_LT(worst, 1e-6 * scale) << tp.steps()[s].date;
+    // Locked: no pair slips or opens.
+    for (double st : tp.node_field(s, "state").values) EXPECT_EQ(st, 0.0);
+  }
 }

@@ -552,6 +552,34 @@ INSTANTIATE_TEST_SUITE_P(
                               "[solver] max_newton_iterations = 1000000: more than 1000"}),
     [](const auto& info) { return info.param.name; });
 
+// Every problem of the [solver] settings is reported at once, one error line each (the libraries
+// that use them check them: mechanics the linear solver and the Newton numbers, contact the
+// saddle-point solver), then exit 2 with no results.
+TEST(SolveTool, EverySolverSettingProblemIsReportedAtOnce) {
+  Dir d("solve-bad-all");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  variant(d, "inversion_rule = \"sigma-max\"",
+          "inversion_rule = \"sigma-max\"\ntolerance = 1\nmax_newton_iterations = 5000\nlinear_solver = \"lu\"\n"
+          "fault_solver = \"x\"",
+          "bad.toml");
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d, "bad.toml") + " -o " + d / "out.h5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const char* expected[] = {"bad.toml: [solver] linear_solver = \"lu\": must be one of cg-hypre, cg-gamg, mumps, cholmod",
+                            "bad.toml: [solver] tolerance = 1: outside [1e-14, 1)",
+                            "bad.toml: [solver] max_newton_iterations = 5000: more than 1000",
+                            "bad.toml: [solver] fault_solver = \"x\": must be one of auto, mumps, fieldsplit"};
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 4) << r.err;
+  std::size_t from = 0;
+  for (const char* e : expected) {
+    const auto at = r.err.find(e, from);
+    ASSERT_NE(at, std::string::npos) << e << "\n" << r.err;
+    const auto line = r.err.rfind('\n', at);
+    EXPECT_EQ(r.err.compare(line == std::string::npos ? 0 : line + 1, 18, "ugs-solve: error: "), 0) << r.err;
+    from = at;
+  }
+  EXPECT_FALSE(fs::exists(d / "out.h5"));
+}
+
 TEST(SolveTool, PressureFromAnotherMeshIsBadInput) {
   Dir d("solve-badp");
   ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);

@@ -11,44 +11,120 @@
 //   ugs-meshgen ... | ugs-solve - --case case.toml --pressure flow.h5 -o solve.h5 -- -ksp_monitor -log_view
 //   ugs-solve faulted.msh --case case.toml --pressure flow.h5 -o solve.h5 --find-safe-scale
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "ugs/cli/tool.hpp"
-#include "ugs/contact/cli.hpp"
+#include "ugs/driver/names.hpp"
+#include "ugs/driver/run.hpp"
+#include "ugs/formats/csv.hpp"
+#include "ugs/formats/error.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
-#include "ugs/mechanics/run.hpp"
+
+namespace {
+
+// The options as given; typed() turns them into the driver's settings.
+struct Args {
+  std::string mesh = "-", case_file, top, top_csv, state, restart, until, solver, partition = "ptscotch";
+  std::vector<std::string> pressure;
+  int checkpoint_every = -1;
+  std::string fault_output, fault_csv, fault_pairs_csv, fault_solver, scenario_csv;
+  std::optional<double> scale;
+  bool find_safe_scale = false;
+};
+
+template <class E>
+std::vector<std::string> names_of(const ugs::driver::Names<E>& names) {
+  std::vector<std::string> v;
+  for (const auto& [n, e] : names) v.push_back(n);
+  return v;
+}
+
+// "" -> the default path, "none" -> off.
+std::optional<std::string> output_path(const std::string& given, const std::string& fallback) {
+  if (given == "none") return std::nullopt;
+  return given.empty() ? fallback : given;
+}
+
+ugs::driver::RunSettings typed(const Args& a, const std::string& output) {
+  using namespace ugs::driver;
+  if (output == "-" || output.empty()) throw ugs::InputError("-o", "results are HDF5 files: give a file name");
+  RunSettings s;
+  const std::string stem = output_stem(output);
+  s.mesh = a.mesh;
+  s.case_file = a.case_file;
+  s.pressure = a.pressure;
+  s.output = output;
+  s.top = output_path(a.top, stem + "_top.h5");
+  if (!a.top_csv.empty()) s.top_csv = a.top_csv;
+  s.state = output_path(a.state, stem + "_state.h5");
+  if (!a.restart.empty()) s.restart = a.restart;
+  if (!a.until.empty()) {
+    const auto t = ugs::parse_iso_date(a.until);
+    if (!t) throw ugs::InputError("--until", "'" + a.until + "' is not an ISO 8601 date");
+    s.until = static_cast<double>(*t);
+  }
+  if (!a.solver.empty()) s.linear = lookup(linear_solver_names(), a.solver);
+  s.partition = *lookup(partition_names(), a.partition);
+  if (a.checkpoint_every >= 0) s.checkpoint_every = a.checkpoint_every;
+  FaultSettings& f = s.faults;
+  f.fields = output_path(a.fault_output, stem + "_faults.h5");
+  f.table = output_path(a.fault_csv, stem + "_faults.csv");
+  f.pairs_prefix = output_path(a.fault_pairs_csv, stem + "_fault_");
+  f.scenario_table = a.scenario_csv.empty() ? stem + "_scenario.csv" : a.scenario_csv;
+  if (!a.fault_solver.empty()) f.solver = lookup(fault_solver_names(), a.fault_solver);
+  f.scale = a.scale;
+  f.find_safe_scale = a.find_safe_scale;
+  return s;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
+  using namespace ugs::driver;
   ugs::cli::Tool tool({"ugs-solve",
                        "Solve the geomechanics of the continuous model: displacement, strain and stress changes per date "
                        "from the pool pressure changes (PETSc, MPI).",
                        "mpirun -n 2 ugs-solve model.msh --case case.toml --pressure flow_poolA.h5 --pressure flow_poolC.h5 "
                        "-o solve.h5 -- -log_view"});
-  ugs::mech::RunOptions opt;
+  Args a;
   auto& app = tool.app();
-  app.add_option("mesh", opt.mesh, "Mesh (MSH 4.1, ASCII or binary; '-' = stdin); with interface elements the faults are solved too")
+  app.add_option("mesh", a.mesh, "Mesh (MSH 4.1, ASCII or binary; '-' = stdin); with interface elements the faults are solved too")
       ->capture_default_str();
-  app.add_option("--case", opt.case_file, "Case file (TOML, docs/case-file.md)")->required();
-  app.add_option("--pressure", opt.pressure,
+  app.add_option("--case", a.case_file, "Case file (TOML, docs/case-file.md)")->required();
+  app.add_option("--pressure", a.pressure,
                  "Pressure change field series from ugs-flow (HDF5, node field dp in Pa); repeat for several pools, "
                  "summed per node")
       ->required();
   tool.add_output("solve.h5", "Results at the output dates (HDF5 + XDMF beside it)");
-  app.add_option("--top", opt.top, "Top-surface displacement at every step (HDF5 + XDMF; default <output>_top.h5; 'none')");
-  app.add_option("--top-csv", opt.top_csv, "Also write the top-surface displacement as a CSV table (mm)");
-  app.add_option("--state", opt.state, "Restart state file (default <output>_state.h5; 'none': no state)");
-  app.add_option("--restart", opt.restart, "Resume from a saved state (written by an earlier run)");
-  app.add_option("--until", opt.until, "Stop after this date (ISO 8601); the state is saved for --restart");
-  app.add_option("--solver", opt.solver, "Linear solver: cg-hypre (default), cg-gamg, mumps, cholmod (overrides the case)")
-      ->check(CLI::IsMember({"cg-gamg", "cg-hypre", "mumps", "cholmod"}));
-  app.add_option("--partition", opt.partition, "Partition of the mesh over MPI ranks: ptscotch or rcb")
+  app.add_option("--top", a.top, "Top-surface displacement at every step (HDF5 + XDMF; default <output>_top.h5; 'none')");
+  app.add_option("--top-csv", a.top_csv, "Also write the top-surface displacement as a CSV table (mm)");
+  app.add_option("--state", a.state, "Restart state file (default <output>_state.h5; 'none': no state)");
+  app.add_option("--restart", a.restart, "Resume from a saved state (written by an earlier run)");
+  app.add_option("--until", a.until, "Stop after this date (ISO 8601); the state is saved for --restart");
+  app.add_option("--solver", a.solver, "Linear solver: cg-hypre (default), cg-gamg, mumps, cholmod (overrides the case)")
+      ->check(CLI::IsMember(names_of(linear_solver_names())));
+  app.add_option("--partition", a.partition, "Partition of the mesh over MPI ranks: ptscotch or rcb")
       ->capture_default_str()
-      ->check(CLI::IsMember({"ptscotch", "rcb"}));
-  app.add_option("--checkpoint-every", opt.checkpoint_every, "Also save the restart state every N steps (overrides the case)")
+      ->check(CLI::IsMember(names_of(partition_names())));
+  app.add_option("--checkpoint-every", a.checkpoint_every, "Also save the restart state every N steps (overrides the case)")
       ->check(CLI::Range(0, 1000000));
-  ugs::contact::FaultedRunOptions fault_opt;
-  ugs::contact::add_fault_options(app, fault_opt);
+  auto* g = app.add_option_group("Faults", "Meshes with interface elements (ugs-faultinsert): fault mechanics");
+  g->add_option("--fault-output", a.fault_output,
+                "Fault fields at the output dates (HDF5 + XDMF; default <output>_faults.h5; 'none')");
+  g->add_option("--fault-csv", a.fault_csv, "Per fault and date: max chi, max slip, areas in slip and open (default "
+                                            "<output>_faults.csv; 'none')");
+  g->add_option("--fault-pairs-csv", a.fault_pairs_csv,
+                "Per fault, every node pair at the output dates (position, along strike, down dip, state, tau, sigma'_n, chi, "
+                "slip, opening, CFS change): PREFIX<fault>.csv (default <output>_fault_<fault>.csv; 'none')");
+  g->add_option("--fault-solver", a.fault_solver, "Saddle-point solver: auto, mumps, fieldsplit (overrides the case)")
+      ->check(CLI::IsMember(names_of(fault_solver_names())));
+  g->add_option("--scale", a.scale, "Scale of the pressure swing after the scenario's reference date (overrides the case)")
+      ->check(CLI::NonNegativeNumber);
+  g->add_flag("--find-safe-scale", a.find_safe_scale,
+              "Search the smallest scale of the swing at which a fault patch reaches chi = 1 (maximum safe storage pressure)");
+  g->add_option("--scenario-csv", a.scenario_csv, "Scales tried by --find-safe-scale (default <output>_scenario.csv)");
   app.footer("PETSc options follow a '--': ugs-solve ... -- -pc_type hypre -ksp_monitor -log_view");
 
   // Everything after "--" belongs to PETSc.
@@ -61,30 +137,29 @@ int main(int argc, char** argv) {
       break;
     }
   return tool.run(ours, argv, [&] {
-    opt.output = tool.output();
-    opt.command_line = tool.command_line();
     ugs::mech::PetscSession petsc(petsc_args);
     // One voice: messages (and the error line) come from rank 0 unless -vv asks for all ranks.
     if (petsc.rank() != 0) {
       if (ugs::cli::verbosity() < 2) std::freopen("/dev/null", "w", stderr);
       ugs::cli::set_verbosity(-1);
     }
-    opt.log = [](int level, const std::string& s) {
-      if (level < 0) ugs::cli::warning("{}", s);
-      else if (level == 0) ugs::cli::info("{}", s);
-      else ugs::cli::detail("{}", s);
+    RunSettings s = typed(a, tool.output());
+    s.command_line = tool.command_line();
+    s.log = [](int level, const std::string& m) {
+      if (level < 0) ugs::cli::warning("{}", m);
+      else if (level == 0) ugs::cli::info("{}", m);
+      else ugs::cli::detail("{}", m);
     };
     std::unique_ptr<ugs::cli::Progress> bar;
-    opt.progress = [&](std::size_t done, std::size_t total) {
+    s.progress = [&](std::size_t done, std::size_t total) {
       if (!bar) bar = std::make_unique<ugs::cli::Progress>("steps", total);
       bar->update(done);
       if (done == total) bar->finish();
     };
-    ugs::contact::use_fault_mechanics(opt, fault_opt);
-    const ugs::mech::RunSummary s = ugs::mech::run_solve(MPI_COMM_WORLD, opt);
+    const RunSummary r = run(MPI_COMM_WORLD, s);
     ugs::cli::detail("{} steps: {} Newton iterations, {} linear iterations, {} preconditioner setups, {} sub-steps",
-                     s.steps, s.newton_iterations, s.linear_iterations, s.preconditioner_setups, s.substeps);
-    ugs::cli::detail("time: reading {:.2f} s, setup {:.2f} s, solving {:.2f} s, output {:.2f} s", s.seconds_read,
-                     s.seconds_setup, s.seconds_solve, s.seconds_output);
+                     r.steps, r.newton_iterations, r.linear_iterations, r.preconditioner_setups, r.substeps);
+    ugs::cli::detail("time: reading {:.2f} s, setup {:.2f} s, solving {:.2f} s, output {:.2f} s", r.seconds_read,
+                     r.seconds_setup, r.seconds_solve, r.seconds_output);
   });
 }

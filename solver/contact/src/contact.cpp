@@ -39,13 +39,6 @@ std::string broadcast_string(MPI_Comm comm, std::string s) {
 
 }  // namespace
 
-SaddleSolver parse_saddle_solver(const std::string& s) {
-  if (s == "auto") return SaddleSolver::Auto;
-  if (s == "mumps") return SaddleSolver::Mumps;
-  if (s == "fieldsplit") return SaddleSolver::FieldSplit;
-  throw InputError("--fault-solver", "'" + s + "' is not one of auto, mumps, fieldsplit");
-}
-
 struct FaultContact::Impl {
   MPI_Comm comm;
   int rank = 0, size = 1;
@@ -263,13 +256,47 @@ void FaultContact::restore(const Snapshot& snap) {
   s.dp_c = s.dp_start = s.dp_now = s.dp_target = snap.dp;
 }
 
+FaultContact::Snapshot FaultContact::gather_snapshot() const {
+  const Impl& s = *impl_;
+  const Snapshot mine = save();
+  std::vector<double> st(mine.state.begin(), mine.state.end());
+  Snapshot all;
+  all.lambda = s.pairs.gather(mine.lambda, 3);
+  all.g = s.pairs.gather(mine.g, 3);
+  all.dp = s.pairs.gather(mine.dp, 1);
+  for (double v : s.pairs.gather(st, 1)) all.state.push_back(static_cast<std::uint8_t>(v));
+  return all;
+}
+
+void FaultContact::restore_gathered(const Snapshot& all) {
+  const Impl& s = *impl_;
+  if (s.rank == 0 && (all.lambda.size() != 3 * all.dp.size() || all.g.size() != 3 * all.dp.size() ||
+                      all.state.size() != all.dp.size() || all.dp.size() != s.pairs.order.size()))
+    throw std::logic_error("FaultContact::restore_gathered: wrong sizes");
+  Snapshot mine;
+  mine.lambda.resize(3 * s.m);
+  mine.g.resize(3 * s.m);
+  mine.dp.resize(s.m);
+  std::vector<double> st(s.m), st_all(all.state.begin(), all.state.end());
+  s.pairs.scatter(all.lambda, 3, mine.lambda.data());
+  s.pairs.scatter(all.g, 3, mine.g.data());
+  s.pairs.scatter(all.dp, 1, mine.dp.data());
+  s.pairs.scatter(st_all, 1, st.data());
+  for (double v : st) mine.state.push_back(static_cast<std::uint8_t>(v));
+  restore(mine);
+}
+
 const ContactStats& FaultContact::stats() const { return impl_->stats; }
 
 std::string FaultContact::description() const {
   const Impl& s = *impl_;
   if (s.linear.kind() == SaddleSolver::Mumps) return fmt::format("{} node pairs, saddle point by MUMPS (LU)", s.pairs.M);
+  // GAMG unless the PETSc options chose BoomerAMG (saddle_solver.cpp).
+  char pc[64] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsGetString(nullptr, nullptr, "-contact_fieldsplit_u_pc_type", pc, sizeof pc, &set);
   return fmt::format("{} node pairs, saddle point by FGMRES + Schur field split ({} on the displacement block, augmentation {:g})",
-                     s.pairs.M, s.opt.amg == "hypre" ? "BoomerAMG" : "GAMG", s.opt.augmentation);
+                     s.pairs.M, set && std::string(pc) == "hypre" ? "BoomerAMG" : "GAMG", s.opt.augmentation);
 }
 
 std::size_t FaultContact::global_pairs() const { return static_cast<std::size_t>(impl_->pairs.M); }

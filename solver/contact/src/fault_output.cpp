@@ -220,7 +220,7 @@ FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path
     std::map<std::string, std::string> file_of;
     for (const auto& fp : fm.faults)
       if (auto [it, fresh] = file_of.emplace(fault_file_name(fp.name), fp.name); !fresh)
-        throw InputError("--fault-pairs-csv", fmt::format("faults '{}' and '{}' would both write {}{}.csv (rename one)",
+        throw InputError(pairs_prefix + "<fault>.csv", fmt::format("faults '{}' and '{}' would both write {}{}.csv (rename one)",
                                                           it->second, fp.name, pairs_prefix, it->first));
     for (std::size_t f = 0; f < fm.faults.size(); ++f) {
       const auto& st = s.plane.strike[f];

@@ -91,12 +91,6 @@ std::vector<int> scotch_parts(const Model& model, std::size_t n, int nparts) {
 
 }  // namespace
 
-PartitionMethod parse_partition_method(const std::string& s) {
-  if (s == "ptscotch") return PartitionMethod::PtScotch;
-  if (s == "rcb") return PartitionMethod::Rcb;
-  throw InputError("--partition", "'" + s + "' is not one of ptscotch, rcb");
-}
-
 std::vector<int> partition_nodes(const Model& model, const std::vector<Point3>& coords, int nparts, PartitionMethod method) {
   const std::size_t n = coords.size();
   if (nparts <= 1) return std::vector<int>(n, 0);

@@ -1,4 +1,4 @@
-#include "state_file.hpp"
+#include "ugs/mechanics/state_file.hpp"
 
 #include <cmath>
 
@@ -10,8 +10,9 @@
 
 namespace ugs::mech {
 
-void write_state(const std::string& path, const Mesh& mesh, const std::string& date, double time, const SavedState& s) {
-  FieldSeriesWriter w(path, mesh);
+void write_state(const std::string& path, const Mesh& mesh, const std::string& date, double time, const SavedState& s,
+                 const FieldSeriesOptions& options) {
+  FieldSeriesWriter w(path, mesh, options);
   const Field nodes[] = {{"u", 3, s.u}};
   const Field cells[] = {{"dp", 1, s.dp}, {"eps", 6, s.eps}, {"dsig", 6, s.dsig}, {"hypo", 4, s.hypo}};
   w.add_step(date, time, nodes, cells);

@@ -131,7 +131,13 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     body();
     return 0;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), e.what());
+    // One error line per problem (ErrorList): each with the tool's name.
+    const std::string all = e.what();
+    for (std::size_t p = 0; p <= all.size();) {
+      const auto q = std::min(all.find('\n', p), all.size());
+      std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), all.substr(p, q - p).c_str());
+      p = q + 1;
+    }
     return 2;
   } catch (const ComputeError& e) {
     std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), e.what());

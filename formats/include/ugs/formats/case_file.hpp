@@ -97,7 +97,7 @@ struct CaseFile {
   // Solver settings (docs/case-file.md).
   double newton_tolerance = 1e-8;
   int max_newton_iterations = 25;
-  std::string linear_solver = "cg-hypre";       // cg-hypre | cg-gamg | mumps | cholmod (ugs-solve)
+  std::string linear_solver = "cg-hypre";       // ugs-solve; named in ugs/mechanics/case_section.hpp
   std::string inversion_rule = "sigma-max";     // sigma-max | sigma-inversion | stress-dependent
   int max_substeps = 64;                        // a step that fails may be split into up to this many
   std::string steps = "every-date";             // every-date | turning-points (docs/mechanics.md)
@@ -109,7 +109,7 @@ struct CaseFile {
   std::vector<std::string> output_fields;
   int checkpoint_every = 0;  // ugs-solve: also save the restart state every N steps (0: output dates only)
   // Faulted runs of ugs-solve (docs/fault-mechanics.md).
-  std::string fault_solver = "auto";       // [solver] fault_solver: auto | mumps | fieldsplit
+  std::string fault_solver = "auto";       // [solver] fault_solver, named in ugs/contact/case_section.hpp
   // [scenario]: the pressure change after reference_date is scaled about its value there,
   // dp_s(t) = dp(t_ref) + scale (dp(t) - dp(t_ref)); ugs-solve --find-safe-scale searches the
   // smallest scale at which a fault patch reaches chi = 1, up to max_scale, to scale_tolerance.

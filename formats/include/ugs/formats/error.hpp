@@ -18,6 +18,25 @@ private:
   std::string where_;
 };
 
+// Every problem found in one pass over an input (as GMT's parse() counts n_errors): checked in
+// full, then thrown as one InputError holding one "where: what" line per problem; the tool prints
+// each line as its own error line.
+class ErrorList {
+public:
+  void add(const std::string& where, const std::string& message) {
+    text_ += (text_.empty() ? "" : "\n") + (where.empty() ? message : where + ": " + message);
+    ++count_;
+  }
+  std::size_t size() const { return count_; }
+  void throw_if_any() const {
+    if (count_) throw InputError("", text_);
+  }
+
+private:
+  std::string text_;
+  std::size_t count_ = 0;
+};
+
 // The computation failed (no convergence, singular system, ...). Exit code 1.
 class ComputeError : public std::runtime_error {
 public:

@@ -17,7 +17,7 @@
 //               medium models
 //   fieldsplit  FGMRES with a Schur-complement field split: the displacement block augmented with
 //               the constraint rows (augmented Lagrangian, K + gamma C W B) under algebraic multigrid
-//               (GAMG or BoomerAMG), the multiplier block by the selfp approximation
+//               (GAMG; BoomerAMG through PETSc options), the multiplier block by the selfp approximation
 //               D - B diag(K_gamma)^-1 C; scalable. PETSc options with the prefix -contact_ tune it
 //               (-contact_ksp_monitor, -contact_fieldsplit_u_pc_type hypre, ...).
 //   auto        mumps up to ContactOptions::direct_limit unknowns, fieldsplit above.
@@ -35,14 +35,12 @@
 
 namespace ugs::contact {
 
+// Named "auto", "mumps" and "fieldsplit" (ugs/driver/names.hpp).
 enum class SaddleSolver { Auto, Mumps, FieldSplit };
-// "auto" | "mumps" | "fieldsplit"; InputError otherwise.
-SaddleSolver parse_saddle_solver(const std::string& s);
 
 struct ContactOptions {
   SaddleSolver solver = SaddleSolver::Auto;
   std::size_t direct_limit = 50000;   // unknowns up to which auto takes MUMPS
-  std::string amg = "gamg";           // displacement block of the field split: gamg | hypre
   double augmentation = 1.0;          // gamma of the augmented Lagrangian (field split)
   double regularization = 1e-6;       // perturbed-Lagrangian weight of redundant junction pairs
   int max_state_changes = 4;          // changes of one pair within a (sub-)step before it is cycling
@@ -82,6 +80,10 @@ public:
   };
   Snapshot save() const;
   void restore(const Snapshot& s);
+  // Collective: the committed state of every pair on rank 0 in FaultModel order (restart files),
+  // and back from rank 0's copy (its sizes checked on rank 0).
+  Snapshot gather_snapshot() const;
+  void restore_gathered(const Snapshot& all);
 
   const ContactStats& stats() const;
   std::string description() const;  // the saddle-point solver in use

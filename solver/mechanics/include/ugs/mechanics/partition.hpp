@@ -10,9 +10,8 @@
 
 namespace ugs::mech {
 
+// Named "ptscotch" and "rcb" (ugs/driver/names.hpp).
 enum class PartitionMethod { PtScotch, Rcb };
-// "ptscotch" | "rcb"; InputError otherwise.
-PartitionMethod parse_partition_method(const std::string& s);
 
 // Part (0 .. nparts-1) of each mesh node. Runs on one process (rank 0); deterministic.
 std::vector<int> partition_nodes(const Model& model, const std::vector<Point3>& coords, int nparts, PartitionMethod method);

@@ -1,0 +1,57 @@
+#include "ugs/driver/safe_scale.hpp"
+
+#include <algorithm>
+
+namespace ugs::driver {
+
+void Watch::see(const contact::FaultModel& fm, const contact::FaultFields& f, const std::string& d) {
+  for (std::size_t q = 0; q < fm.pairs.size(); ++q) {
+    if (!fm.pairs[q].frictional()) continue;
+    const bool hit = f.state[q] != 0 || f.chi[q] >= 1 - 1e-9;
+    if (f.chi[q] > max_chi) max_chi = f.chi[q];
+    if (hit && !critical) {
+      critical = true;
+      fault = fm.faults[fm.pairs[q].fault].name;
+      date = d;
+      at = fm.pairs[q].x;
+    }
+  }
+}
+
+SafeScale search_safe_scale(double max_scale, double tolerance, const std::function<Watch(double)>& trial) {
+  SafeScale safe;
+  double lo = 0, hi = -1;
+  Watch lo_w, hi_w;
+  for (double s = 1;; s = std::min(2 * s, max_scale)) {
+    const Watch w = trial(s);
+    if (w.critical) {
+      hi = s, hi_w = w;
+      break;
+    }
+    lo = s, lo_w = w;
+    if (s >= max_scale) break;
+  }
+  if (hi > 0) {
+    while (hi - lo > tolerance * hi) {
+      const double mid = 0.5 * (lo + hi);
+      const Watch w = trial(mid);
+      if (w.critical) hi = mid, hi_w = w;
+      else lo = mid, lo_w = w;
+    }
+    safe.found = true;
+    safe.critical = hi;
+    safe.fault = hi_w.fault;
+    safe.date = hi_w.date;
+    safe.at = hi_w.at;
+  }
+  safe.safe = lo;
+  safe.peak_dp_max = lo_w.dp_max;
+  safe.peak_dp_min = lo_w.dp_min;
+  return safe;
+}
+
+void scale_about(std::vector<double>& dp, const std::vector<double>& ref, double s) {
+  for (std::size_t i = 0; i < dp.size(); ++i) dp[i] = ref[i] + s * (dp[i] - ref[i]);
+}
+
+}  // namespace ugs::driver
