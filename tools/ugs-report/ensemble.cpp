@@ -1,14 +1,21 @@
 // The ensemble's pictures, from an ugs-ensemble output folder (docs/ensemble.md): a tornado chart
 // of the sensitivity indices (sobol.csv: S1 and ST with their intervals; morris.csv: mu* and sigma)
 // and fan charts of the PS series (ps_series.csv: the P10-P90 band and P50 of the members against
-// the InSAR series), with the exceedance probabilities of chi as headlines. The CSVs are copied to
-// the work folder as they are: the figures plot exactly the files people read.
+// the InSAR series), with the exceedance probabilities of chi as headlines, and maps of P(chi >= 1)
+// and P(chi >= 0.8) on each fault plane (chi_exceedance_pairs.csv, the rows over all dates), drawn
+// as ugs-report's single-run chi maps. The CSVs are copied to the work folder as they are: the
+// figures plot exactly the files people read.
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "report.hpp"
 #include "ugs/formats/csv.hpp"
+#include "ugs/insar/npy.hpp"
 
 namespace ugs::report {
 
@@ -23,6 +30,88 @@ void copy_table(const CsvTable& t, const std::string& to) {
     w.end_row();
   }
   w.commit();
+}
+
+// The fault's strike in the horizontal plane from its pairs' along_strike (= x sx + y sy - s0,
+// docs/fault-mechanics.md): least squares, or along the pairs' line when they stand on one in plan
+// (a vertical fault). For the pools' outlines on the fault's plane.
+std::array<double, 3> strike_of(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& s) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0, ms = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n, ms += s[i] / n;
+  double xx = 0, xy = 0, yy = 0, xs = 0, ys = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double dx = x[i] - mx, dy = y[i] - my, ds = s[i] - ms;
+    xx += dx * dx, xy += dx * dy, yy += dy * dy, xs += dx * ds, ys += dy * ds;
+  }
+  const double det = xx * yy - xy * xy;
+  double sx = 1, sy = 0;
+  if (det > 1e-9 * (xx + yy) * (xx + yy)) {
+    sx = (yy * xs - xy * ys) / det, sy = (xx * ys - xy * xs) / det;
+  } else if (xx + yy > 0) {
+    std::tie(sx, sy) = xx >= yy ? std::pair{xx, xy} : std::pair{xy, yy};
+    if (sx * xs + sy * ys < 0) sx = -sx, sy = -sy;
+  }
+  const double h = std::hypot(sx, sy);
+  sx /= h, sy /= h;
+  return {sx, sy, mx * sx + my * sy - ms};
+}
+
+// Maps of P(chi >= 1) and P(chi >= 0.8) on each fault plane: the rows of chi_exceedance_pairs.csv
+// over all dates ("max"), copied as the CSV of what is drawn.
+void exceedance_maps(Context& c, const CsvTable& t) {
+  const auto cf = t.column("fault"), cd = t.column("date"), cx = t.column("x_m"), cy = t.column("y_m"), cz = t.column("z_m");
+  const auto cs = t.column("along_strike_m"), c8 = t.column("p_chi_ge_0.8"), c1 = t.column("p_chi_ge_1");
+  struct Plane {
+    std::string name;
+    std::vector<double> x, y, s, z, p8, p1;
+  };
+  std::vector<Plane> planes;
+  CsvWriter w(c.work_file("ensemble_chi_exceedance.csv"), t.columns());
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    if (t.text(r, cd) != "max") continue;
+    for (std::size_t k = 0; k < t.columns().size(); ++k) w.text(t.text(r, k));
+    w.end_row();
+    if (planes.empty() || planes.back().name != t.text(r, cf)) planes.push_back({std::string(t.text(r, cf)), {}, {}, {}, {}, {}, {}});
+    Plane& p = planes.back();
+    p.x.push_back(t.number(r, cx)), p.y.push_back(t.number(r, cy)), p.s.push_back(t.number(r, cs)), p.z.push_back(t.number(r, cz));
+    p.p8.push_back(t.number(r, c8)), p.p1.push_back(t.number(r, c1));
+  }
+  w.commit();
+  if (planes.empty()) return;
+  const PoolNodes pools = pool_nodes(c);
+  for (const auto& [tag, threshold] : {std::pair{"1", 1.0}, std::pair{"0.8", 0.8}}) {
+    std::string panels;
+    for (const auto& p : planes) {
+      if (p.s.size() < 3) {
+        c.notes.push_back(fmt::format("chi_exceedance_pairs.csv: fault {} has {} node pairs, too few for a map", p.name, p.s.size()));
+        continue;
+      }
+      const std::string stem = fmt::format("ensemble_p_chi_ge_{}_{}", tag, slug(p.name));
+      std::vector<double> sz;
+      for (std::size_t i = 0; i < p.s.size(); ++i) sz.insert(sz.end(), {p.s[i], p.z[i]});
+      const auto& v = threshold == 1.0 ? p.p1 : p.p8;
+      insar::write_npy(c.work_file(stem + "_nodes.npy"), sz, {p.s.size(), 2});
+      insar::write_npy(c.work_file(stem + ".npy"), v, {v.size()});
+      const auto [sx, sy, s0] = strike_of(p.x, p.y, p.s);
+      const std::string outline = write_pool_outlines(c, pools, fmt::format("ensemble_pools_on_{}.csv", slug(p.name)), sx, sy, s0);
+      const double top = *std::max_element(v.begin(), v.end());
+      panels += fmt::format("{}{{\"name\": {}, \"nodes\": {}, \"values\": {}, \"max\": {}, \"pools\": {}, \"title\": {}}}",
+                            panels.empty() ? "" : ", ", jstr(p.name), jwork(stem + "_nodes.npy"), jwork(stem + ".npy"), top, outline,
+                            jstr(fmt::format("{}: largest P(χ ≥ {}) {:.2f}", p.name, tag, top)));
+    }
+    if (panels.empty()) continue;
+    Figure f;
+    f.kind = "faults";
+    f.png = fmt::format("ensemble_p_chi_ge_{}.png", tag);
+    f.title = fmt::format("Probability that χ reaches {} at some date, over the ensemble", tag);
+    f.caption = fmt::format("The fraction of the members whose χ reaches {} at the node pair at any output date, on each fault in "
+                            "its own plane (distance along strike and elevation; linear between the pairs{}); "
+                            "ensemble_chi_exceedance.csv, the rows 'max' of chi_exceedance_pairs.csv.", tag,
+                            pools.empty() ? "" : "; the pools' outline projected on the fault's plane");
+    f.json = fmt::format("\"panels\": [{}], \"vmax\": 1, \"label\": {}", panels, jstr(fmt::format("P(χ ≥ {})", tag)));
+    c.add(f);
+  }
 }
 
 }  // namespace
@@ -41,6 +130,7 @@ void build_ensemble(Context& c) {
                              fmt::format("{:.2f}, {:.2f}", ex.number(r, ex.column("p_chi_ge_0.8")), ex.number(r, ex.column("p_chi_ge_1"))),
                              ""});
   }
+  if (fs::exists(dir / "chi_exceedance_pairs.csv")) exceedance_maps(c, CsvTable::read((dir / "chi_exceedance_pairs.csv").string()));
   for (const char* method : {"sobol", "morris"}) {
     const fs::path p = dir / (std::string(method) + ".csv");
     if (!fs::exists(p)) continue;

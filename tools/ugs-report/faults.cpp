@@ -138,9 +138,11 @@ std::vector<std::array<double, 2>> convex_hull(std::vector<std::array<double, 2>
   return h;
 }
 
+}  // namespace
+
 // The nodes of each pool's materials (tetrahedra of mat:<name>), for the outlines on the faults.
-std::vector<std::pair<std::string, std::vector<Point3>>> pool_nodes(const Context& c) {
-  std::vector<std::pair<std::string, std::vector<Point3>>> out;
+PoolNodes pool_nodes(const Context& c) {
+  PoolNodes out;
   if (!c.mesh || !c.cs) return out;
   for (const auto& pool : c.cs->pools) {
     std::vector<char> in(c.mesh->num_nodes(), 0);
@@ -160,7 +162,19 @@ std::vector<std::pair<std::string, std::vector<Point3>>> pool_nodes(const Contex
   return out;
 }
 
-}  // namespace
+std::string write_pool_outlines(const Context& c, const PoolNodes& pools, const std::string& name, double sx, double sy, double s0) {
+  if (pools.empty()) return "null";
+  if (!std::filesystem::exists(c.work_file(name))) {
+    CsvWriter w(c.work_file(name), {"pool", "s", "z"});
+    for (const auto& [pool, pts] : pools) {
+      std::vector<std::array<double, 2>> q;
+      for (const auto& p : pts) q.push_back({p[0] * sx + p[1] * sy - s0, p[2]});
+      for (const auto& h : convex_hull(q)) w.text(pool).number(h[0], 3).number(h[1], 3).end_row();
+    }
+    w.commit();
+  }
+  return jwork(name);
+}
 
 void build_faults(Context& c) {
   if (c.opt.faults.empty()) {
@@ -203,7 +217,7 @@ void build_faults(Context& c) {
   const bool have_interp = std::find(node_names.begin(), node_names.end(), "interpolated") != node_names.end();
   std::vector<FaultNodes> faults_n;
   if (per_node) faults_n = read_fault_nodes(fr, mesh);
-  const auto pools = per_node ? pool_nodes(c) : decltype(pool_nodes(c)){};
+  const PoolNodes pools = per_node ? pool_nodes(c) : PoolNodes{};
   // Per fault, the largest value of `field` at a step: over the fault's node pairs (interpolated =
   // 0), as ugs-solve's statistics.
   auto node_max = [&](std::size_t step, std::vector<std::vector<double>>& values, std::vector<std::size_t>& where) {
@@ -258,20 +272,7 @@ void build_faults(Context& c) {
         insar::write_npy(c.work_file(stem + "_nodes.npy"), sz, {f.nodes.size(), 2});
         insar::write_npy(c.work_file(stem + "_tri.npy"), tri, {f.tri.size(), 3});
         insar::write_npy(c.work_file(stem + ".npy"), values[k], {values[k].size()});
-        std::string outline = "null";
-        if (!pools.empty()) {
-          const std::string name = fmt::format("pools_on_{}.csv", slug(f.name));
-          if (!std::filesystem::exists(c.work_file(name))) {
-            CsvWriter w(c.work_file(name), {"pool", "s", "z"});
-            for (const auto& [pool, pts] : pools) {
-              std::vector<std::array<double, 2>> q;
-              for (const auto& p : pts) q.push_back({p[0] * f.sx + p[1] * f.sy - f.s0, p[2]});
-              for (const auto& h : convex_hull(q)) w.text(pool).number(h[0], 3).number(h[1], 3).end_row();
-            }
-            w.commit();
-          }
-          outline = jwork(name);
-        }
+        const std::string outline = write_pool_outlines(c, pools, fmt::format("pools_on_{}.csv", slug(f.name)), f.sx, f.sy, f.s0);
         panels += fmt::format("{}{{\"name\": {}, \"nodes\": {}, \"tri\": {}, \"values\": {}, \"max\": {}, \"at\": [{}, {}], "
                               "\"pools\": {}}}",
                               panels.empty() ? "" : ", ", jstr(f.name), jwork(stem + "_nodes.npy"), jwork(stem + "_tri.npy"),

@@ -8,8 +8,9 @@ re-run by hand on a report made with --keep-work.
 
 Kinds: map (node values on the top surface, reservoir trace, PS points), pooltop (cell values on
 the top of a pool's layer), section (polygons of a vertical section, vertical exaggeration),
-series (simulated vs measured at a PS point, pool pressures), faults (chi on each fault in its
-plane: node values linear on triangles with the pools' outline, or values per cell), chi_series
+series (simulated vs measured at a PS point, pool pressures), faults (chi, or the ensemble's
+probability that chi reaches a threshold, on each fault in its plane: node values linear on
+triangles with the pools' outline, or values per cell), chi_series
 (max chi per fault against time, pool pressures), profile (calibration misfit of every evaluation).
 """
 import csv
@@ -224,10 +225,16 @@ def plot_faults(m, fig):
         ax = f.add_subplot(rows, cols, i + 1)
         axes.append(ax)
         v = load(p["values"])
-        if "tri" in p:
+        if "nodes" in p:
             # Node values (the node pairs'), linear on each triangle: the colours reach the maximum.
+            # Without the fault's triangles (the ensemble's per-pair table): the Delaunay
+            # triangles of the pairs in the plane, in metres both ways.
             sz = load(p["nodes"]).reshape(-1, 2)
-            tri = Triangulation(sz[:, 0] * 1e-3, sz[:, 1], load(p["tri"]).reshape(-1, 3))
+            if "tri" in p:
+                triangles = load(p["tri"]).reshape(-1, 3)
+            else:
+                triangles = Triangulation(sz[:, 0], sz[:, 1]).triangles
+            tri = Triangulation(sz[:, 0] * 1e-3, sz[:, 1], triangles)
             pc = ax.tripcolor(tri, v, shading="gouraud", cmap="viridis", vmin=0.0, vmax=fig["vmax"])
             s, z = sz[:, 0] * 1e-3, sz[:, 1]
             top = p["max"]
@@ -256,7 +263,7 @@ def plot_faults(m, fig):
             ax.legend(fontsize=7, loc="lower right")
         ax.set_xlim(s.min(), s.max())
         ax.set_ylim(z.min(), z.max())
-        ax.set_title(f"{p['name']}: max χ = {top:.3f}", fontsize=9)
+        ax.set_title(p.get("title", f"{p['name']}: max χ = {top:.3f}"), fontsize=9)
         ax.set_xlabel("along strike (km)", fontsize=8)
         ax.set_ylabel("elevation (m)", fontsize=8)
         ax.tick_params(labelsize=7)

@@ -94,6 +94,13 @@ std::string mm(double v);  // "3.21"
 // (written once); false without a case or pools. `label`: the axis label.
 bool write_pressures(Context& c, std::string& label);
 
+// The nodes of each pool's materials (tetrahedra of mat:<name>); empty without a mesh or a case.
+using PoolNodes = std::vector<std::pair<std::string, std::vector<Point3>>>;
+PoolNodes pool_nodes(const Context& c);
+// The pools' outlines (convex hull of their nodes) on a fault's plane, along strike s = x sx + y sy
+// - s0 and elevation, as work/<name> (pool,s,z; written once): its jwork, or "null" without pools.
+std::string write_pool_outlines(const Context& c, const PoolNodes& pools, const std::string& name, double sx, double sy, double s0);
+
 // Figure builders (each adds figures, headlines and notes).
 void build_maps(Context& c);
 void build_series(Context& c);

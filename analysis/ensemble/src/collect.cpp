@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/ensemble/fault_pairs.hpp"
 #include "ugs/ensemble/morris.hpp"
 #include "ugs/ensemble/statistics.hpp"
 #include "ugs/formats/csv.hpp"
@@ -23,7 +24,7 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
   const std::size_t n = members.size(), d = spec.parameters.size();
   sum.members = n;
   const fs::path out(out_dir);
-  // 1. Each member's metrics; the metric names in first-seen order (members in design order).
+  // 1. Each member's metrics.
   std::vector<std::optional<Metrics>> metrics(n);
   std::vector<MemberOutputs> series(n);
   std::vector<std::string> errors(n);
@@ -42,15 +43,53 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
       errors[k] = fmt::format("member {}: {}", k + 1, e.what());
       continue;
     }
-    for (const auto& [name, v] : *metrics[k])
-      if (column.emplace(name, names.size()).second) names.push_back(name);
   }
+  // 2. Each member's chi at the fault node pairs. The members share the mesh: a member whose pairs
+  // differ from the set most members share (ties: the earliest) is a failed member, never mixed in.
+  std::vector<MemberPairs> pairs(n);
+  std::vector<std::size_t> group(n, n), group_ref, group_size;  // group of member k; each group's first member, size
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!metrics[k]) continue;
+    try {
+      pairs[k] = read_member_pairs(members.folder(k));
+    } catch (const InputError& e) {
+      errors[k] = fmt::format("member {}: {}", k + 1, e.what());
+      metrics[k].reset();
+      continue;
+    }
+    std::size_t g = 0;
+    while (g < group_ref.size() && !pair_set_difference(pairs[k], pairs[group_ref[g]], group_ref[g] + 1).empty()) ++g;
+    if (g == group_ref.size()) group_ref.push_back(k), group_size.push_back(0);
+    group[k] = g;
+    ++group_size[g];
+  }
+  std::vector<const MemberPairs*> same_pairs;
+  if (!group_ref.empty()) {
+    const std::size_t best = static_cast<std::size_t>(std::max_element(group_size.begin(), group_size.end()) - group_size.begin());
+    const std::size_t ref = group_ref[best];
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!metrics[k]) continue;
+      if (group[k] == best) {
+        same_pairs.push_back(&pairs[k]);
+        continue;
+      }
+      errors[k] = fmt::format("member {}: its fault node pairs differ from member {}'s (the members share the mesh): {}", k + 1, ref + 1,
+                              pair_set_difference(pairs[k], pairs[ref], ref + 1));
+      metrics[k].reset();
+    }
+  }
+  // The metric names in first-seen order (members in design order).
+  for (std::size_t k = 0; k < n; ++k)
+    if (metrics[k])
+      for (const auto& [name, v] : *metrics[k])
+        if (column.emplace(name, names.size()).second) names.push_back(name);
   for (std::size_t k = 0; k < n; ++k)
     if (metrics[k]) ++sum.done;
     else sum.failures.emplace_back(k + 1, errors[k]);
   // value[m][k], and whether member k has metric m
   std::vector<std::vector<double>> value(names.size(), std::vector<double>(n, 0.0));
   std::vector<std::vector<bool>> has(names.size(), std::vector<bool>(n, false));
+  // The metric names in first-seen order (members in design order).
   for (std::size_t k = 0; k < n; ++k)
     if (metrics[k])
       for (const auto& [name, v] : *metrics[k]) {
@@ -119,6 +158,8 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
     }
     w.commit();
   }
+  if (!same_pairs.empty() && !same_pairs.front()->empty())
+    write_chi_exceedance(same_pairs, (out / "chi_exceedance_pairs.csv").string(), comments);
   // The fan charts' data: quantiles of the simulated series at each PS point and date, beside the
   // measured value (each relative to the first PS date the results reach).
   if (options.ps && options.ps->has_series()) {

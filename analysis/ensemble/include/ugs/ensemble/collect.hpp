@@ -1,8 +1,10 @@
 // Gathering an ensemble: every member's metrics (metrics.hpp) from its cache entry, the failed
 // and missing members with their error line, and the statistics, as CSV files in `out_dir`
 // (formats in docs/ensemble.md): parameters.csv, members.csv, failures.csv, quantiles.csv,
-// exceedance.csv, ps_series.csv (with PS series), and sobol.csv or morris.csv for those designs. A failed member is excluded from
-// every statistic and listed in failures.csv (and returned for stderr), never dropped silently.
+// exceedance.csv, chi_exceedance_pairs.csv (with per-pair fault CSVs), ps_series.csv (with PS
+// series), and sobol.csv or morris.csv for those designs. A failed member (also one whose fault
+// node pairs differ from the others') is excluded from every statistic and listed in failures.csv
+// (and returned for stderr), never dropped silently.
 #pragma once
 #include <string>
 #include <vector>
