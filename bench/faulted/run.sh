@@ -10,7 +10,7 @@
 # in six crossing faults, a hypo-plastic pool and aquifer) is written once into WORK_DIR. Prints the
 # Newton and linear iterations of every step, the fault statistics and both wall times.
 set -eu
-B=${1:?usage: run.sh BUILD_DIR [WORK_DIR] [NPROC]}
+B=$(cd "${1:?usage: run.sh BUILD_DIR [WORK_DIR] [NPROC]}" && pwd)  # absolute: the runs cd into WORK_DIR
 W=${2:-$B/bench-faulted}
 NP=${3:-2}
 shift $(( $# < 3 ? $# : 3 ))

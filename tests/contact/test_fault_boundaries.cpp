@@ -18,11 +18,13 @@
 //  - Junction: a vertical fault crossing the slab's dipping one (X-junction on the roller planes,
 //    the vertical fault's pairs on the bottom with x free only): locked = continuous.
 //  - A state that keeps cycling on the slab stops the step naming the fault and its node pairs.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 
 #include <gtest/gtest.h>
+#include <petscsys.h>
 
 #include "fault_meshes.hpp"
 #include "ugs/contact/contact.hpp"
@@ -341,6 +343,82 @@ TEST(SlabFailure, DivergenceNamesTheFaultAndPairs) {
   std::printf("%s\n", why.substr(0, 300).c_str());
   EXPECT_NE(why.find("fault 'F'"), std::string::npos) << why;
   EXPECT_NE(why.find("node pair"), std::string::npos) << why;
+}
+
+// A singular constraint set (the former frames above) with the sub-step retry on: every sub-step's
+// factorisation fails (MUMPS INFOG(1)=-10). Formerly the first retry reused the failed MUMPS
+// instance and stopped in PETSc ("PETSc error 76 in KSPSolve ... MUMPS in solve phase:
+// INFOG(1)=-3", thrown out of advance); now each failure is a failed Newton iteration, the step
+// halves down to 1/64 and fails with the solver's reason and the fault named, the state restored.
+TEST(SlabFailure, SingularSystemIsRetriedThenFailsCleanly) {
+  Mesh mesh = test::dipping_slab(false, kTilt);
+  test::insert_all_faults(mesh);
+  auto former = [](contact::FaultModel& fm) {
+    for (auto& p : fm.pairs) {
+      Point3 n{p.R[2], -kTilt * p.R[2], p.R[8]};
+      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (double& c : n) c /= l;
+      p.R = contact::fault_frame(n);
+      p.active = 7;
+    }
+  };
+  Faulted f;
+  ASSERT_NO_THROW(f = faulted(mesh, boundary_case(0, 15), slab_block, -20e6, 4, former, 64));
+  ASSERT_FALSE(f.geostatic.converged && f.load.converged);
+  const std::string& why = f.geostatic.converged ? f.load.failure : f.geostatic.failure;
+  std::printf("%s\n", why.substr(0, 300).c_str());
+  EXPECT_NE(why.find("the saddle-point solver (MUMPS) failed"), std::string::npos) << why;
+  EXPECT_NE(why.find("sub-step of 1/64 of the step"), std::string::npos) << why;  // retried to the end
+  EXPECT_NE(why.find("fault 'F'"), std::string::npos) << why;
+  EXPECT_EQ(why.find("PETSc error"), std::string::npos) << why;
+  EXPECT_EQ(why.find('\n'), std::string::npos) << why;
+  // The state of the last converged step (the geostatic one: no displacement, the initial tractions).
+  const auto umax = *std::max_element(f.u.begin(), f.u.end(), [](double a, double b) { return std::abs(a) < std::abs(b); });
+  EXPECT_EQ(umax, 0.0);
+  for (std::size_t q = 0; q < f.fm.pairs.size(); ++q)
+    for (int j = 0; j < 3; ++j) ASSERT_EQ(f.res.lambda[3 * q + j], f.fm.pairs[q].lambda0[j]) << q;
+}
+
+// A failed factorisation is recovered from: the slab's frictional depletion with MUMPS told not to
+// pivot (-contact_mat_mumps_cntl_1 0: a zero pivot on the multiplier rows, INFOG(1)=-10) fails
+// cleanly; with pivoting back, the same solver objects converge to the answer of a fresh run
+// (the failed instance is not reused: formerly INFOG(1)=-3 and a PETSc error out of advance).
+TEST(SlabFailure, FailedFactorisationIsRecoveredFrom) {
+  Mesh mesh = test::dipping_slab(false, kTilt);
+  test::insert_all_faults(mesh);
+  const CaseFile cs = boundary_case(0, 15);
+  const Faulted fresh = faulted(mesh, cs, slab_block, -20e6);
+  ASSERT_TRUE(fresh.load.converged) << fresh.load.failure;
+
+  const mech::Model m = mech::build_model(mesh, cs, true);
+  contact::FaultModel fm = contact::build_fault_model(mesh, cs, m, contact::geostatic_fault_state(m.initial));
+  contact::FaultContact fc(MPI_COMM_WORLD, &fm, contact::ContactOptions{});
+  mech::MechanicsSolver s(MPI_COMM_WORLD, &m, solver_options());
+  s.set_coupling(fc);
+  fc.set_pressure_change(std::vector<double>(fm.pairs.size(), 0.0));
+  ASSERT_TRUE(s.advance(std::vector<double>(m.tets.size(), 0.0), "geostatic").converged);
+  std::vector<double> dpf(fm.pairs.size(), 0.0);
+  for (std::size_t q = 0; q < dpf.size(); ++q)
+    if (slab_block(fm.pairs[q].x)) dpf[q] = -20e6;
+  fc.set_pressure_change(dpf);
+  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-contact_mat_mumps_cntl_1", "0"), 0);
+  mech::StepReport failed;
+  ASSERT_NO_THROW(failed = s.advance(cell_dp(m, slab_block, -20e6), "depletion"));
+  ASSERT_EQ(PetscOptionsClearValue(nullptr, "-contact_mat_mumps_cntl_1"), 0);
+  ASSERT_FALSE(failed.converged);
+  std::printf("no pivoting: %s\n", failed.failure.substr(0, 200).c_str());
+  EXPECT_NE(failed.failure.find("DIVERGED_PC_FAILED"), std::string::npos) << failed.failure;
+  EXPECT_EQ(failed.failure.find("PETSc error"), std::string::npos) << failed.failure;
+  mech::StepReport again;
+  ASSERT_NO_THROW(again = s.advance(cell_dp(m, slab_block, -20e6), "depletion"));
+  ASSERT_TRUE(again.converged) << again.failure;
+  const auto u = s.gather_displacement();
+  double diff = 0, umax = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) diff = std::max(diff, std::abs(u[i] - fresh.u[i])), umax = std::max(umax, std::abs(u[i]));
+  std::printf("recovered: %d Newton iterations, max |u - u_fresh| / max |u| = %.1e\n", again.newton_iterations, diff / umax);
+  EXPECT_GT(umax, 0.0);
+  EXPECT_LT(diff / umax, 1e-10);
+  EXPECT_EQ(fc.gather().state, fresh.res.state);
 }
 
 // Two faults crossing in the slab (an X-junction on the roller planes y = 0 and y = 50; the vertical

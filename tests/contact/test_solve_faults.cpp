@@ -14,7 +14,8 @@
 //    the same numbers, bit for bit, as the uninterrupted run; checkpoints write the fault state;
 //  - turning-point steps on a faulted model (a storage cycle): the low and the last date only, with
 //    the results of every-date stepping there (linear rock, locked fault: path-independent);
-//  - the fault reaching a side with rollers (not fixed) converges, chi <= 1 in the faults CSV.
+//  - the fault reaching a side with rollers (not fixed) converges, chi <= 1 in the faults CSV;
+//  - a saddle-point factorisation that always fails ends in exit 1 and one line, after the retries.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -255,6 +256,30 @@ TEST(SolveFaults, NewtonFailureNamesTheFaultAndItsNodes) {
   EXPECT_NE(r.err.find("node pairs"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(d / "fail.h5"));
   EXPECT_FALSE(fs::exists(d / "fail_faults.h5"));
+}
+
+// A saddle-point factorisation that fails on every try (MUMPS told not to pivot: a zero pivot on
+// the multiplier rows, INFOG(1)=-10), on 1 and 2 processes: the sub-step is retried down to its
+// smallest (max_substeps = 4, for time) and the run exits 1 with one line naming the step, the solver's reason and the fault, leaving no
+// results. Formerly the first retry reused the failed MUMPS instance and the run ended in "PETSc
+// error 76 in KSPSolve ... MUMPS in solve phase: INFOG(1)=-3" (no step, no fault).
+TEST(SolveFaults, FailedFactorisationExitsOneWithOneLine) {
+  Dir d("solve-faults-mumps");
+  ASSERT_EQ(test::run(make_case(d, "--dp 6 --cell 100 --extra 'max_substeps = 4'")).exit_code, 0);
+  for (int ranks : {1, 2}) {
+    const auto r = test::run(solve(d, "-o " + d / "out.h5 -- -contact_mat_mumps_cntl_1 0", ranks));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const std::string head = "ugs-solve: error: step 2/2 (2001-01-01): the saddle-point solver (MUMPS) failed: DIVERGED_PC_FAILED";
+    const auto line = r.err.find(head);
+    ASSERT_NE(line, std::string::npos) << r.err;
+    const std::string text = r.err.substr(line, r.err.find('\n', line) - line);
+    EXPECT_EQ(r.err.find("ugs-solve: error:", line + 1), std::string::npos) << r.err;  // one error line
+    EXPECT_NE(text.find("fault 'F'"), std::string::npos) << text;
+    EXPECT_NE(text.find("sub-step of 1/4 of the step"), std::string::npos) << text;
+    EXPECT_EQ(r.err.find("PETSC ERROR"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("PETSc error"), std::string::npos) << r.err;
+    for (const char* f : {"out.h5", "out_faults.h5", "out_faults.csv", "out_fault_F.csv"}) EXPECT_FALSE(fs::exists(d / f)) << f;
+  }
 }
 
 // The fault reaching the east side with rollers on every side instead of fixed ones (issue 21):

@@ -306,6 +306,8 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
     FaultProperties& f = fm.faults[el.fault];
     ++f.elements;
     f.area += el.area;
+    int paired = 0;  // corners of the triangle that are node pairs
+    for (int c = 0; c < 3; ++c) paired += el.n[c] != el.n[c + 3];
     for (int c = 0; c < 3; ++c) {
       const std::uint32_t s1 = el.n[c], s2 = el.n[c + 3];
       if (s1 == s2) {
@@ -330,6 +332,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
       const std::size_t q = it->second;
       const double a = el.area / 3;
       fm.pairs[q].area += a;
+      fm.pairs[q].reported_area += el.area / paired;
       for (int d = 0; d < 3; ++d) nsum[q][d] += a * el.normal[d];
       ksum[q] += a * 0.5 * (k1 + k2);
       bsum[q] += a * b1;

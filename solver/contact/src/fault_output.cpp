@@ -62,8 +62,8 @@ std::vector<FaultDateStats> fault_date_stats(const FaultModel& fm, const FaultFi
     d.max_slip = std::max(d.max_slip, f.slip_abs[q]);
     d.max_opening = std::max(d.max_opening, f.opening[q]);
     d.max_cfs_change = std::max(d.max_cfs_change, f.cfs_change[q]);
-    if (f.state[q] == 1) ++d.slipping, d.slip_area += p.area;
-    if (f.state[q] == 2) ++d.open, d.open_area += p.area;
+    if (f.state[q] == 1) ++d.slipping, d.slip_area += p.reported_area;
+    if (f.state[q] == 2) ++d.open, d.open_area += p.reported_area;
   }
   for (auto& d : s)
     if (d.pairs == 0) d.max_cfs_change = 0;
@@ -301,7 +301,7 @@ void FaultOutput::add(const std::string& date, double time, const FaultFields& f
         const int st = std::clamp(static_cast<int>(std::lround(state[i])), 0, 2);
         w.text(date).integer(static_cast<std::int64_t>(M.node_tags[i]));
         w.number(x[0]).number(x[1]).number(x[2]).number(s.plane.along_strike[i]).number(s.plane.down_dip[i]);
-        w.number(s.fm->pairs[s.fm->surface.node_pair[i]].area);
+        w.number(s.fm->pairs[s.fm->surface.node_pair[i]].reported_area);
         w.text(kState[st]).number(tau[i] * 1e-6).number(sne[i] * 1e-6).number(chi[i]).number(slip[i] * 1e3);
         w.number(opening[i] * 1e3).number(cfs[i] * 1e-6).number(pf[i] * 1e-6).integer(interp_v[i] != 0 ? 1 : 0).end_row();
       }

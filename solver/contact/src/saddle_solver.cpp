@@ -6,6 +6,7 @@
 
 #include "petsc_call.hpp"
 #include "ugs/contact/dof_mask.hpp"
+#include "ugs/formats/error.hpp"
 
 #define CHK UGS_CONTACT_PETSC
 
@@ -14,7 +15,7 @@ namespace {
 
 bool has_option(const char* name) {
   PetscBool has = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, nullptr, name, &has);
+  CHK(PetscOptionsHasName(nullptr, nullptr, name, &has));
   return has == PETSC_TRUE;
 }
 
@@ -140,7 +141,6 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   CHK(VecRestoreArrayRead(r, &ra));
   for (int q = 0; q < m; ++q)
     for (int j = 0; j < 3; ++j) b[n3 + 3 * q + j] = -eq[q].F[j];
-  Mat op = nullptr;
   if (kind_ == SaddleSolver::FieldSplit) {
     augment(A, pd, sys, eq, b + n3);
     CHK(VecRestoreArray(rhs_, &b));
@@ -153,6 +153,54 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
     CHK(VecRestoreArrayRead(sys.fc, &f));
   }
   CHK(VecRestoreArray(rhs_, &b));
+  mech::CouplingSolve out;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  PetscInt its = 0;
+  // A failed factorisation or solve (MUMPS: a zero pivot, too little workspace; PETSc errors
+  // inside the KSP) is a failed Newton iteration, not the end of the run: the caller restores the
+  // state and retries with a smaller sub-step. PETSc keeps a MUMPS instance whose factorisation
+  // failed (a retry skips the factorisation and calls the solve phase: INFOG(1)=-3), so the
+  // KSP is reset and the next solve starts from a fresh analysis.
+  try {
+    its = linear_solve(A, rtol, sys, stats, reason);
+  } catch (const ComputeError& e) {
+    reset();
+    out.ok = false;
+    out.failure = fmt::format("the saddle-point solver ({}) failed: {}", name(), e.what());
+    return out;
+  }
+  out.iterations = static_cast<int>(its);
+  if (reason < 0) {
+    reset();
+    out.ok = false;
+    out.failure = fmt::format("the saddle-point solver ({}) failed: {} after {} iterations", name(), KSPConvergedReasons[reason], its);
+    return out;
+  }
+  // du (zero on prescribed components) and lambda += dlambda.
+  const PetscScalar* x = nullptr;
+  PetscScalar* d = nullptr;
+  CHK(VecGetArrayRead(sol_, &x));
+  CHK(VecGetArray(du, &d));
+  for (int a = 0; a < n_owned_; ++a)
+    for (int k = 0; k < 3; ++k) d[3 * a + k] = is_fixed(owned_fixed[a], k) ? 0.0 : x[3 * a + k];
+  CHK(VecRestoreArray(du, &d));
+  for (int q = 0; q < m; ++q)
+    for (int j = 0; j < 3; ++j) lam[q][j] += x[n3 + 3 * q + j];
+  CHK(VecRestoreArrayRead(sol_, &x));
+  return out;
+}
+
+void SaddlePointSolver::reset() {
+  CHK(KSPReset(ksp_));
+  for (Mat* a : {&J_, &Jaij_})
+    if (*a) CHK(MatDestroy(a));
+  A_seen_ = nullptr;
+  configured_ = false;
+  pc_built_ = false;
+}
+
+PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason) {
+  Mat op = nullptr;
   if (!J_ || A != A_seen_) {
     if (J_) CHK(MatDestroy(&J_));
     Mat blocks[4] = {kind_ == SaddleSolver::FieldSplit ? Kg_ : A, sys.C, sys.B, sys.D};
@@ -182,7 +230,8 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
     op = J_;
   }
   CHK(KSPSetOperators(ksp_, op, op));
-  if (stats.solves == 0) CHK(KSPSetFromOptions(ksp_));
+  if (!configured_) CHK(KSPSetFromOptions(ksp_));
+  configured_ = true;
   PetscReal old_rtol, abstol, dtol;
   PetscInt maxit;
   CHK(KSPGetTolerances(ksp_, &old_rtol, &abstol, &dtol, &maxit));
@@ -193,7 +242,6 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   const bool iterative = kind_ == SaddleSolver::FieldSplit;
   bool reuse = iterative && opt_->reuse_preconditioner && pc_built_ && last_its_ <= std::max(2 * baseline_its_, baseline_its_ + 10);
   PetscInt its = 0;
-  KSPConvergedReason reason;
   for (;;) {
     CHK(KSPSetReusePreconditioner(ksp_, reuse ? PETSC_TRUE : PETSC_FALSE));
     CHK(KSPSolve(ksp_, rhs_, sol_));
@@ -209,24 +257,7 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   }
   pc_built_ = true;
   last_its_ = static_cast<int>(its);
-  mech::CouplingSolve out;
-  out.iterations = static_cast<int>(its);
-  if (reason < 0) {
-    out.ok = false;
-    out.failure = fmt::format("the saddle-point solver ({}) failed: {} after {} iterations", name(), KSPConvergedReasons[reason], its);
-  }
-  // du (zero on prescribed components) and lambda += dlambda.
-  const PetscScalar* x = nullptr;
-  PetscScalar* d = nullptr;
-  CHK(VecGetArrayRead(sol_, &x));
-  CHK(VecGetArray(du, &d));
-  for (int a = 0; a < n_owned_; ++a)
-    for (int k = 0; k < 3; ++k) d[3 * a + k] = is_fixed(owned_fixed[a], k) ? 0.0 : x[3 * a + k];
-  CHK(VecRestoreArray(du, &d));
-  for (int q = 0; q < m; ++q)
-    for (int j = 0; j < 3; ++j) lam[q][j] += x[n3 + 3 * q + j];
-  CHK(VecRestoreArrayRead(sol_, &x));
-  return out;
+  return its;
 }
 
 }  // namespace ugs::contact::detail

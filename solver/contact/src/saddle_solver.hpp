@@ -41,6 +41,11 @@ public:
 private:
   // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split).
   void augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, const std::vector<PairEquations>& eq, PetscScalar* rl);
+  // The operator, the preconditioner and KSPSolve on rhs_ into sol_; throws ComputeError on a PETSc error.
+  PetscInt linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason);
+  // After a failure: drops the factorisation or hierarchy and the block operator, so that the next
+  // solve sets everything up afresh.
+  void reset();
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   int n_owned_ = 0;
@@ -51,6 +56,7 @@ private:
   Mat A_seen_ = nullptr;
   KSP ksp_ = nullptr;
   bool pc_built_ = false;
+  bool configured_ = false;  // KSPSetFromOptions done since the last reset
   int baseline_its_ = 0, last_its_ = 0;
 };
 

@@ -49,7 +49,10 @@ struct NodePair {
   std::uint32_t side1 = 0, side2 = 0;  // mesh node indices (twins)
   std::uint64_t tag1 = 0, tag2 = 0;    // their node tags
   std::int32_t fault = 0;              // index into FaultModel::faults
-  double area = 0;                     // A_q [m2]
+  double area = 0;                     // A_q [m2]: a third of each of its triangles (the coupling's weight)
+  // The area the outputs count (slip and open areas, the per-pair CSV): each triangle's area split
+  // over its corners that are pairs, so that tip nodes' thirds are not lost at the fault's edges [m2].
+  double reported_area = 0;
   Point3 x{};                          // position
   std::array<double, 9> R{};           // row-major 3x3, columns t1 (strike), t2 (dip), n
   std::array<double, 3> lambda0{};     // initial total traction, local frame [Pa]
