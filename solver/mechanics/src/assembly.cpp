@@ -132,7 +132,9 @@ void MechanicsSolver::Impl::assemble() {
   if (!any) return;
   PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
   if (full) {
-    vals = vals_lin;
+    // The elastic part is needed again only when hypo-plastic elements change the matrix.
+    if (has_hyp) vals = vals_lin;
+    else vals.swap(vals_lin);
     for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
       scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], tangent(h)), false);
       assembled_Dt[h] = tangent(h);
@@ -162,6 +164,9 @@ void MechanicsSolver::Impl::assemble() {
     std::vector<double>().swap(vals);
     std::vector<double>().swap(vals_lin);
     std::vector<PetscInt>().swap(cols);
+    std::vector<PetscInt>().swap(rowptr);
+    std::vector<std::int64_t>().swap(node_cols);
+    std::vector<PetscInt>().swap(node_ptr);
   }
   PetscLogEventEnd(events().assembly, 0, 0, 0, 0);
 }
@@ -190,13 +195,31 @@ void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t
     UGS_PETSC(MatCreate(lm.comm, &A));
     UGS_PETSC(MatSetSizes(A, m, m, PETSC_DETERMINE, PETSC_DETERMINE));
     UGS_PETSC(MatSetBlockSize(A, 3));
-    UGS_PETSC(MatSetType(A, MATAIJ));
-    if (lm.size == 1) {
-      UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+    if (hypre_owns_matrix()) {
+      // BoomerAMG works on hypre's own matrix: built there directly, A is that matrix and PCHYPRE
+      // uses it as it is, instead of converting a PETSc copy (one matrix in memory, not two).
+      UGS_PETSC(MatSetType(A, MATHYPRE));
+      std::vector<PetscInt> dnnz(m, 0), onnz(m, 0);
+      const PetscInt lo = 3 * static_cast<PetscInt>(lm.node_begin), hi = lo + m;
+      for (PetscInt i = 0; i < m; ++i)
+        for (PetscInt k = rowptr[i]; k < rowptr[i + 1]; ++k) ++(cols[k] >= lo && cols[k] < hi ? dnnz[i] : onnz[i]);
+      UGS_PETSC(MatHYPRESetPreallocation(A, 0, dnnz.data(), 0, onnz.data()));
+      for (PetscInt i = 0; i < m; ++i) {
+        const PetscInt row = lo + i;
+        UGS_PETSC(MatSetValues(A, 1, &row, rowptr[i + 1] - rowptr[i], cols.data() + rowptr[i], vals.data() + rowptr[i],
+                               INSERT_VALUES));
+      }
+      UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     } else {
-      UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+      UGS_PETSC(MatSetType(A, MATAIJ));
+      if (lm.size == 1) {
+        UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+      } else {
+        UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+      }
+      UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
     }
-    UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
     UGS_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
     if (!has_hyp) {
       UGS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));

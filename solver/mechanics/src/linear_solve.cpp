@@ -83,6 +83,15 @@ void MechanicsSolver::Impl::setup_ksp() {
   UGS_PETSC(KSPSetFromOptions(ksp));
 }
 
+bool MechanicsSolver::Impl::hypre_owns_matrix() const {
+  if (has_hyp || coupling) return false;  // (the fault coupling reads A's rows as AIJ)
+  PC pc;
+  UGS_PETSC(KSPGetPC(ksp, &pc));
+  PetscBool is_hypre = PETSC_FALSE;
+  UGS_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCHYPRE, &is_hypre));
+  return is_hypre == PETSC_TRUE;
+}
+
 void MechanicsSolver::Impl::assemble_symmetric_p() {
   std::vector<double> pv = vals_lin;
   for (std::size_t h = 0; h < hyp_cells.size(); ++h)

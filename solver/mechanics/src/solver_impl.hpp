@@ -214,6 +214,11 @@ struct MechanicsSolver::Impl {
   // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
   void scatter_dummy_diag(int c);
 
+  // A linear problem preconditioned by hypre (whatever -pc_type chose): A is built as hypre's
+  // matrix. (With hypo-plastic elements A changes while a preconditioner is kept, and BoomerAMG's
+  // fine level must keep the matrix it was set up with: PCHYPRE's converted copy.)
+  bool hypre_owns_matrix() const;
+
   // Copies the assembled values into A: every row, or the rows of `changed_nodes` (owned).
   void upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes);
 
