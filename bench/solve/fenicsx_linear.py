@@ -51,7 +51,7 @@ nu = 0.3
 tdim = msh.topology.dim
 ncells = msh.topology.index_map(tdim).size_local + msh.topology.index_map(tdim).num_ghosts
 c2v = msh.geometry.dofmap
-centroid = np.array([msh.geometry.x[c2v.links(c)].mean(axis=0) for c in range(ncells)])
+centroid = msh.geometry.x[c2v.array.reshape(-1, 4)[:ncells]].mean(axis=1)  # (vectorized: no Python loop per cell)
 sigma = np.maximum((0.0226 - 0.0100) * (50.0 - centroid[:, 2]), 0.1)
 cm = 1.0044e-2 * sigma ** -1.1347 * 1e-6
 Q = fem.FunctionSpace(msh, ("DG", 0))
