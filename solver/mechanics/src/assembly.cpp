@@ -34,22 +34,22 @@ double MechanicsSolver::Impl::residual() {
     gather_element(ua, c, ue);
     const Vec6 eps = fem::tet4_strain(geo[c], ue);
     Vec6 ds;
-    const int h = hyp_of_cell[c];
+    const int h = hyp.of_cell[c];
     if (h < 0) {
       ds = elastic_stress(c, eps);
     } else {
-      trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], committed[h], start_sigma(h), eps,
-                                  hold[h] == fem::Hold::None ? guess[h] : hold_dir[h], hold[h],
+      hyp.trial[h] = fem::hypo_update(lm.materials[lm.cell_material[c]], hyp.committed[h], start_sigma(h), eps,
+                                  hyp.hold[h] == fem::Hold::None ? hyp.guess[h] : hyp.hold_dir[h], hyp.hold[h],
                                   fem::TangentForm::Consistent);
-      trial_eps[h] = eps;
-      ds = trial[h].dsig;
-      sat = sat || trial[h].saturated;
+      hyp.trial_eps[h] = eps;
+      ds = hyp.trial[h].dsig;
+      sat = sat || hyp.trial[h].saturated;
     }
     double fe[12] = {};
     fem::tet4_add_internal_force(geo[c], ds, fe);
     add_owned(fint, c, fe);
   }
-  saturated = sat;
+  hyp.saturated = sat;
   UGS_PETSC(VecRestoreArrayRead(ul, &ua));
   UGS_PETSC(VecGhostRestoreLocalForm(u, &ul));
   PetscScalar* ra = nullptr;
@@ -69,13 +69,13 @@ void MechanicsSolver::Impl::scatter(std::vector<double>& v, int c, const std::ar
   for (int i = 0; i < 4; ++i) {
     const int a = t[i];
     if (a >= lm.n_owned) continue;
-    const PetscInt nb = node_ptr[a], d = node_ptr[a + 1] - nb;
-    const std::int64_t* row = node_cols.data() + nb;
+    const PetscInt nb = assembler.node_ptr[a], d = assembler.node_ptr[a + 1] - nb;
+    const std::int64_t* row = assembler.node_cols.data() + nb;
     for (int j = 0; j < 4; ++j) {
       const int b = t[j];
       const PetscInt k = static_cast<PetscInt>(std::lower_bound(row, row + d, lm.global[b]) - row);
       for (int ci = 0; ci < 3; ++ci) {
-        if (diag_too && i == j) diag_scale[3 * a + ci] += Ke[(3 * i + ci) * 12 + 3 * j + ci];
+        if (diag_too && i == j) assembler.diag_scale[3 * a + ci] += Ke[(3 * i + ci) * 12 + 3 * j + ci];
         if ((lm.fixed[a] >> ci) & 1) continue;
         double* dst = v.data() + 9 * nb + ci * 3 * d + 3 * k;
         for (int e = 0; e < 3; ++e)
@@ -88,80 +88,85 @@ void MechanicsSolver::Impl::scatter(std::vector<double>& v, int c, const std::ar
 void MechanicsSolver::Impl::set_constrained_diagonal(std::vector<double>& v) const {
   for (int a = 0; a < lm.n_owned; ++a) {
     if (!lm.fixed[a]) continue;
-    const PetscInt nb = node_ptr[a], d = node_ptr[a + 1] - nb;
-    const std::int64_t* row = node_cols.data() + nb;
+    const PetscInt nb = assembler.node_ptr[a], d = assembler.node_ptr[a + 1] - nb;
+    const std::int64_t* row = assembler.node_cols.data() + nb;
     const PetscInt k = static_cast<PetscInt>(std::lower_bound(row, row + d, lm.global[a]) - row);
     for (int ci = 0; ci < 3; ++ci)
       if ((lm.fixed[a] >> ci) & 1) {
-        const double s = diag_scale[3 * a + ci];
+        const double s = assembler.diag_scale[3 * a + ci];
         v[9 * nb + ci * 3 * d + 3 * k + ci] = s > 0 ? s : 1.0;
       }
   }
 }
 
 void MechanicsSolver::Impl::assemble() {
-  bool changed = !mat_created;
-  if (!have_lin) {
-    vals_lin.assign(cols.size(), 0.0);
-    diag_scale.assign(3 * lm.n_owned, 0.0);
+  bool changed = !assembler.mat_created;
+  if (!assembler.have_lin) {
+    assembler.vals_lin.assign(assembler.cols.size(), 0.0);
+    assembler.diag_scale.assign(3 * lm.n_owned, 0.0);
     for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
       const int c = static_cast<int>(ci);
-      if (hyp_of_cell[c] >= 0) {
+      if (hyp.of_cell[c] >= 0) {
         scatter_dummy_diag(c);
         continue;
       }
-      scatter(vals_lin, c, fem::tet4_stiffness(geo[c], elastic_D(c)), true);
+      scatter(assembler.vals_lin, c, fem::tet4_stiffness(geo[c], elastic_D(c)), true);
     }
-    have_lin = true;
+    assembler.have_lin = true;
   }
   // Only the elements whose tangent changed materially are updated (their stiffness difference
   // is added): the matrix is a quasi-Newton tangent anyway, and most elements change by little
   // between iterations. A full assembly every kFullAssemblyEvery updates keeps the sums fresh.
-  const bool full = changed || updates_since_full >= kFullAssemblyEvery;
+  const bool full = changed || assembler.updates_since_full >= Assembler::kFullAssemblyEvery;
   std::vector<std::int32_t> stale;
-  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-    if (std::memcmp(tangent(h).data(), assembled_Dt[h].data(), sizeof(fem::Mat6)) == 0) continue;
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+    if (std::memcmp(tangent(h).data(), assembler.assembled_Dt[h].data(), sizeof(fem::Mat6)) == 0) continue;
     if (full) {
       changed = true;
       break;
     }
-    if (relative_change(tangent(h), assembled_Dt[h]) > kTangentChange) stale.push_back(static_cast<std::int32_t>(h));
+    if (relative_change(tangent(h), assembler.assembled_Dt[h]) > Assembler::kTangentChange) stale.push_back(static_cast<std::int32_t>(h));
   }
   int mine = changed || !stale.empty() ? 1 : 0, any = 0;
   MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
   if (!any) return;
   PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
   if (full) {
-    vals = vals_lin;
-    for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-      scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], tangent(h)), false);
-      assembled_Dt[h] = tangent(h);
-      assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
+    // The elastic part is needed again only when hypo-plastic elements change the matrix.
+    if (has_hyp) assembler.vals = assembler.vals_lin;
+    else assembler.vals.swap(assembler.vals_lin);
+    for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+      scatter(assembler.vals, hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], tangent(h)), false);
+      assembler.assembled_Dt[h] = tangent(h);
+      assembler.assembled_phase[h] = static_cast<std::int8_t>(hyp.trial[h].phase);
     }
-    set_constrained_diagonal(vals);  // (scatter never touches prescribed rows or columns)
-    updates_since_full = 0;
+    set_constrained_diagonal(assembler.vals);  // (scatter never touches prescribed rows or columns)
+    assembler.updates_since_full = 0;
     upload(true, {});
   } else {
     std::vector<std::int32_t> rows;  // owned nodes whose rows changed
     for (const auto h : stale) {
       fem::Mat6 dD;
-      for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembled_Dt[h][i];
-      scatter(vals, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], dD), false);
-      assembled_Dt[h] = tangent(h);
-      assembled_phase[h] = static_cast<std::int8_t>(trial[h].phase);
-      for (const auto v : lm.cells[hyp_cells[h]])
+      for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembler.assembled_Dt[h][i];
+      scatter(assembler.vals, hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], dD), false);
+      assembler.assembled_Dt[h] = tangent(h);
+      assembler.assembled_phase[h] = static_cast<std::int8_t>(hyp.trial[h].phase);
+      for (const auto v : lm.cells[hyp.cells[h]])
         if (v < lm.n_owned) rows.push_back(v);
     }
     std::sort(rows.begin(), rows.end());
     rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    ++updates_since_full;
+    ++assembler.updates_since_full;
     upload(false, rows);
   }
   if (!has_hyp) {
     // The matrix can never change: the assembly arrays are not needed again.
-    std::vector<double>().swap(vals);
-    std::vector<double>().swap(vals_lin);
-    std::vector<PetscInt>().swap(cols);
+    std::vector<double>().swap(assembler.vals);
+    std::vector<double>().swap(assembler.vals_lin);
+    std::vector<PetscInt>().swap(assembler.cols);
+    std::vector<PetscInt>().swap(assembler.rowptr);
+    std::vector<std::int64_t>().swap(assembler.node_cols);
+    std::vector<PetscInt>().swap(assembler.node_ptr);
   }
   PetscLogEventEnd(events().assembly, 0, 0, 0, 0);
 }
@@ -181,22 +186,40 @@ void MechanicsSolver::Impl::scatter_dummy_diag(int c) {
   const auto& t = lm.cells[c];
   for (int i = 0; i < 4; ++i)
     if (t[i] < lm.n_owned)
-      for (int ci = 0; ci < 3; ++ci) diag_scale[3 * t[i] + ci] += Ke[(3 * i + ci) * 12 + 3 * i + ci];
+      for (int ci = 0; ci < 3; ++ci) assembler.diag_scale[3 * t[i] + ci] += Ke[(3 * i + ci) * 12 + 3 * i + ci];
 }
 
 void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes) {
   const PetscInt m = 3 * lm.n_owned;
-  if (!mat_created) {
+  if (!assembler.mat_created) {
     UGS_PETSC(MatCreate(lm.comm, &A));
     UGS_PETSC(MatSetSizes(A, m, m, PETSC_DETERMINE, PETSC_DETERMINE));
     UGS_PETSC(MatSetBlockSize(A, 3));
-    UGS_PETSC(MatSetType(A, MATAIJ));
-    if (lm.size == 1) {
-      UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+    if (hypre_owns_matrix()) {
+      // BoomerAMG works on hypre's own matrix: built there directly, A is that matrix and PCHYPRE
+      // uses it as it is, instead of converting a PETSc copy (one matrix in memory, not two).
+      UGS_PETSC(MatSetType(A, MATHYPRE));
+      std::vector<PetscInt> dnnz(m, 0), onnz(m, 0);
+      const PetscInt lo = 3 * static_cast<PetscInt>(lm.node_begin), hi = lo + m;
+      for (PetscInt i = 0; i < m; ++i)
+        for (PetscInt k = assembler.rowptr[i]; k < assembler.rowptr[i + 1]; ++k) ++(assembler.cols[k] >= lo && assembler.cols[k] < hi ? dnnz[i] : onnz[i]);
+      UGS_PETSC(MatHYPRESetPreallocation(A, 0, dnnz.data(), 0, onnz.data()));
+      for (PetscInt i = 0; i < m; ++i) {
+        const PetscInt row = lo + i;
+        UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals.data() + assembler.rowptr[i],
+                               INSERT_VALUES));
+      }
+      UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     } else {
-      UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, rowptr.data(), cols.data(), vals.data()));
+      UGS_PETSC(MatSetType(A, MATAIJ));
+      if (lm.size == 1) {
+        UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, assembler.rowptr.data(), assembler.cols.data(), assembler.vals.data()));
+      } else {
+        UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, assembler.rowptr.data(), assembler.cols.data(), assembler.vals.data()));
+      }
+      UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
     }
-    UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
     UGS_PETSC(MatSetOption(A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
     if (!has_hyp) {
       UGS_PETSC(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
@@ -218,11 +241,11 @@ void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t
     UGS_PETSC(MatNullSpaceDestroy(&nsp));
     UGS_PETSC(VecDestroy(&xyz));
     UGS_PETSC(KSPSetOperators(ksp, A, A));
-    mat_created = true;
+    assembler.mat_created = true;
   } else {
     auto set_row = [&](PetscInt i) {
       const PetscInt row = static_cast<PetscInt>(3 * lm.node_begin) + i;
-      UGS_PETSC(MatSetValues(A, 1, &row, rowptr[i + 1] - rowptr[i], cols.data() + rowptr[i], vals.data() + rowptr[i],
+      UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals.data() + assembler.rowptr[i],
                              INSERT_VALUES));
     };
     if (all_rows) {
@@ -234,7 +257,7 @@ void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t
     UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
-  mat_changed = true;
+  assembler.mat_changed = true;
 }
 
 }  // namespace ugs::mech

@@ -83,23 +83,32 @@ void MechanicsSolver::Impl::setup_ksp() {
   UGS_PETSC(KSPSetFromOptions(ksp));
 }
 
+bool MechanicsSolver::Impl::hypre_owns_matrix() const {
+  if (has_hyp || coupling) return false;  // (the fault coupling reads A's rows as AIJ)
+  PC pc;
+  UGS_PETSC(KSPGetPC(ksp, &pc));
+  PetscBool is_hypre = PETSC_FALSE;
+  UGS_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCHYPRE, &is_hypre));
+  return is_hypre == PETSC_TRUE;
+}
+
 void MechanicsSolver::Impl::assemble_symmetric_p() {
-  std::vector<double> pv = vals_lin;
-  for (std::size_t h = 0; h < hyp_cells.size(); ++h)
-    scatter(pv, hyp_cells[h], fem::tet4_stiffness(geo[hyp_cells[h]], fem::symmetric_tangent(lm.materials[lm.cell_material[hyp_cells[h]]], trial[h])), false);
+  std::vector<double> pv = assembler.vals_lin;
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h)
+    scatter(pv, hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], fem::symmetric_tangent(lm.materials[lm.cell_material[hyp.cells[h]]], hyp.trial[h])), false);
   set_constrained_diagonal(pv);
   if (!P) {
     UGS_PETSC(MatCreate(lm.comm, &P));
     const PetscInt m = 3 * lm.n_owned;
     UGS_PETSC(MatSetSizes(P, m, m, PETSC_DETERMINE, PETSC_DETERMINE));
     UGS_PETSC(MatSetType(P, MATSEQAIJ));
-    UGS_PETSC(MatSeqAIJSetPreallocationCSR(P, rowptr.data(), cols.data(), pv.data()));
+    UGS_PETSC(MatSeqAIJSetPreallocationCSR(P, assembler.rowptr.data(), assembler.cols.data(), pv.data()));
     UGS_PETSC(MatSetOption(P, MAT_SYMMETRIC, PETSC_TRUE));
     UGS_PETSC(MatSetOption(P, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
     UGS_PETSC(MatSetOption(P, MAT_SPD, PETSC_TRUE));
   } else {
     for (PetscInt i = 0; i < 3 * lm.n_owned; ++i)
-      UGS_PETSC(MatSetValues(P, 1, &i, rowptr[i + 1] - rowptr[i], cols.data() + rowptr[i], pv.data() + rowptr[i],
+      UGS_PETSC(MatSetValues(P, 1, &i, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], pv.data() + assembler.rowptr[i],
                              INSERT_VALUES));
     UGS_PETSC(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY));
     UGS_PETSC(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY));
@@ -107,8 +116,8 @@ void MechanicsSolver::Impl::assemble_symmetric_p() {
 }
 
 void MechanicsSolver::Impl::rebuild_pc() {
-  if (pc_valid) refresh_basis();
-  pc_phase = assembled_phase;
+  if (reuse.valid) refresh_basis();
+  reuse.phase = assembler.assembled_phase;
   if (separate_p()) {
     if (opt.linear == LinearSolver::Cholmod) assemble_symmetric_p();
     else if (!P) UGS_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &P));
@@ -122,7 +131,7 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve_once(double rtol
   PetscReal old_rtol, abstol, dtol;
   PetscInt user_maxit;
   UGS_PETSC(KSPGetTolerances(ksp, &old_rtol, &abstol, &dtol, &user_maxit));
-  UGS_PETSC(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit > 0 ? std::min(maxit, user_maxit_) : user_maxit_));
+  UGS_PETSC(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit > 0 ? std::min(maxit, reuse.user_maxit) : reuse.user_maxit));
   PetscReal bnorm = 0;
   UGS_PETSC(VecNorm(r, NORM_2, &bnorm));
   UGS_PETSC(KSPSetInitialGuessNonzero(ksp, guess ? PETSC_TRUE : PETSC_FALSE));
@@ -138,35 +147,48 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve_once(double rtol
   return s;
 }
 
+bool PreconditionerReuse::rate_ok(bool factored) const {
+  // A factorization is kept while the iterations it costs beyond a fresh one, over the next
+  // kFactorHorizon solves, stay within what refactoring costs in solve iterations (measured once,
+  // reuse_rule.hpp); a multigrid hierarchy while it stays near its first rate (and, solve(), few
+  // elements changed branch: a setup costs a few cycles). Counts only, never measured time: the decision
+  // changes the numbers, and they must not depend on the machine's load.
+  return factored ? keep_factorization(baseline_ipd, last_ipd, last_decades, kRefactorIterations, kFactorHorizon)
+                  : keep_multigrid(baseline_ipd, last_ipd);
+}
+
+PetscInt PreconditionerReuse::budget(bool factored, double rtol) const {
+  const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
+  return factored ? static_cast<PetscInt>(std::ceil(2 * kFactorIpd * decades))
+                  : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
+}
+
+void PreconditionerReuse::record(int iterations, double reduction, bool fresh) {
+  last_decades = std::max(std::log10(1.0 / std::max(reduction, 1e-300)), 0.3);
+  last_ipd = iterations / last_decades;
+  if (fresh) baseline_ipd = last_ipd, ++setups;
+  valid = true;
+}
+
 MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, bool guess) {
-  if (user_maxit_ < 0) {
+  if (reuse.user_maxit < 0) {
     PetscReal a, b, c;
-    UGS_PETSC(KSPGetTolerances(ksp, &a, &b, &c, &user_maxit_));
+    UGS_PETSC(KSPGetTolerances(ksp, &a, &b, &c, &reuse.user_maxit));
   }
-  bool fresh = !pc_valid;
+  bool fresh = !reuse.valid;
   const char* why = fresh ? "first" : "";
-  if (!pc_valid) rebuild_pc();
-  if (mat_changed) {
-    // A factorization is kept while the iterations it costs beyond a fresh one, over the next
-    // kFactorHorizon solves, stay within what refactoring costs in solve iterations (measured once,
-    // reuse_rule.hpp); a multigrid hierarchy while it stays near its first rate
-    // and few elements changed branch (a setup costs a few cycles). Counts only, never measured
-    // time: the decision changes the numbers, and they must not depend on the machine's load.
-    const bool rate_ok = factored() ? keep_factorization(baseline_ipd, last_ipd, last_decades, kRefactorIterations, kFactorHorizon)
-                                    : keep_multigrid(baseline_ipd, last_ipd);
-    const bool keep = rate_ok && (factored() || !branches_moved());
-    const bool reuse = pc_valid && opt.reuse_preconditioner && keep;
-    if (reuse) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
+  if (!reuse.valid) rebuild_pc();
+  if (assembler.mat_changed) {
+    const bool rate_ok = reuse.rate_ok(factored());
+    const bool keep = reuse.valid && opt.reuse_preconditioner && rate_ok && (factored() || !branches_moved());
+    if (keep) UGS_PETSC(KSPSetReusePreconditioner(ksp, PETSC_TRUE));
     else rebuild_pc();
-    if (!reuse && !fresh) why = !opt.reuse_preconditioner ? "always" : !rate_ok ? "rate" : "branches";
-    fresh = !reuse;
-    mat_changed = false;
+    if (!keep && !fresh) why = !opt.reuse_preconditioner ? "always" : !rate_ok ? "rate" : "branches";
+    fresh = !keep;
+    assembler.mat_changed = false;
   }
   // A reused preconditioner gets a budget; if it cannot make it, rebuild and solve again.
-  const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
-  const PetscInt budget = fresh ? -1
-                          : factored() ? static_cast<PetscInt>(std::ceil(2 * kFactorIpd * decades))
-                                       : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
+  const PetscInt budget = fresh ? -1 : reuse.budget(factored(), rtol);
   if (fresh) UGS_PETSC(KSPSetUp(ksp));
   SolveResult s = solve_once(rtol, guess, budget);
   int its_total = s.iterations;
@@ -179,12 +201,8 @@ MechanicsSolver::Impl::SolveResult MechanicsSolver::Impl::solve(double rtol, boo
     its_total += s.iterations;
   }
   s.setup = why;
-  last_decades = std::max(std::log10(1.0 / std::max(s.reduction, 1e-300)), 0.3);
-  last_ipd = s.iterations / last_decades;
-  if (fresh) baseline_ipd = last_ipd;
+  reuse.record(s.iterations, s.reduction, fresh);
   s.iterations = its_total;
-  if (fresh) ++pc_setups;
-  pc_valid = true;
   zero_fixed(du);  // prescribed components stay exactly at their values (an AMG correction may touch them)
   return s;
 }

@@ -23,21 +23,21 @@ bool inexact_newton() {
 
 bool MechanicsSolver::Impl::branches_moved() const {
   long long mine = 0, all = 0;
-  for (std::size_t h = 0; h < assembled_phase.size(); ++h) mine += tangent_differs(h, assembled_phase[h], pc_phase[h]);
+  for (std::size_t h = 0; h < assembler.assembled_phase.size(); ++h) mine += tangent_differs(h, assembler.assembled_phase[h], reuse.phase[h]);
   MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
-  return static_cast<double>(all) > 0.05 * static_cast<double>(n_hyp_global);
+  return static_cast<double>(all) > 0.05 * static_cast<double>(hyp.n_global);
 }
 
 bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepReport& rep, std::string& why) {
   external_force(dp_target);
-  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
     // First tangent: the element keeps its direction unless its pressure change reverses.
-    const double d = dp_target[hyp_cells[h]] - dp_cell[hyp_cells[h]];
-    const int sd = d < 0 ? -1 : d > 0 ? +1 : 0, dir = committed[h].hypo.direction;
-    guess[h] = static_cast<std::int8_t>(sd != 0 && sd != last_ddp[h] ? -dir : dir);
-    piece[h] = 0;
-    flips[h] = 0;
-    hold[h] = fem::Hold::None;
+    const double d = dp_target[hyp.cells[h]] - dp_cell[hyp.cells[h]];
+    const int sd = d < 0 ? -1 : d > 0 ? +1 : 0, dir = hyp.committed[h].hypo.direction;
+    hyp.guess[h] = static_cast<std::int8_t>(sd != 0 && sd != hyp.last_ddp[h] ? -dir : dir);
+    hyp.piece[h] = 0;
+    hyp.flips[h] = 0;
+    hyp.hold[h] = fem::Hold::None;
   }
   UGS_PETSC(VecCopy(u, u_save));
   rep.residuals.clear();
@@ -48,11 +48,11 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
   // A step is nonlinear if an element is on the virgin branch or is expected to change direction
   // (under sigma-max only a change from virgin loading: unloading and reloading share one stiffness).
   int nonlinear = 0;
-  for (std::size_t h = 0; h < hyp_cells.size() && !nonlinear; ++h) {
-    const fem::InversionRule rule = lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule;
-    nonlinear = (guess[h] != committed[h].hypo.direction &&
-                 (rule != fem::InversionRule::SigmaMax || committed_phase[h] == fem::LoadingPhase::Virgin)) ||
-                (guess[h] > 0 && start_sigma(static_cast<int>(h)) >= committed[h].hypo.sigma_max * (1 - 1e-9)) ||
+  for (std::size_t h = 0; h < hyp.cells.size() && !nonlinear; ++h) {
+    const fem::InversionRule rule = lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule;
+    nonlinear = (hyp.guess[h] != hyp.committed[h].hypo.direction &&
+                 (rule != fem::InversionRule::SigmaMax || hyp.committed_phase[h] == fem::LoadingPhase::Virgin)) ||
+                (hyp.guess[h] > 0 && start_sigma(static_cast<int>(h)) >= hyp.committed[h].hypo.sigma_max * (1 - 1e-9)) ||
                 rule == fem::InversionRule::StressDependent;
   }
   int any_nonlinear = 0;
@@ -70,7 +70,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     // reuse, the predictor or a coupling (a locked fault) (docs/mechanics.md "Inexact Newton").
     const double floor_rtol = 0.5 * opt.tolerance * r0 / rk;
     const double rtol = std::min(0.5, has_hyp && !inexact_newton() ? floor_rtol : std::max(floor_rtol, eta));
-    const int setups_before = pc_setups;
+    const int setups_before = reuse.setups;
     const bool guess = !coupling && k == 1 && predict();
     SolveResult s;
     if (coupling) {
@@ -84,7 +84,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
       s = solve(rtol, guess);
     }
     rep.linear_iterations += s.iterations;
-    rep.preconditioner_setups += pc_setups - setups_before;
+    rep.preconditioner_setups += reuse.setups - setups_before;
     ++rep.newton_iterations;
     if (s.reason < 0 && !(s.reason == KSP_DIVERGED_ITS && s.reduction < 0.5)) {
       why = fmt::format("linear solver failed ({}) after {} iterations", KSPConvergedReasons[s.reason], s.iterations);
@@ -92,21 +92,21 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     }
     UGS_PETSC(VecAXPY(u, 1.0, du));
     rprev = rk;
-    std::vector<int> before(hyp_cells.size());
-    for (std::size_t h = 0; h < hyp_cells.size(); ++h) before[h] = static_cast<int>(trial[h].phase);
+    std::vector<int> before(hyp.cells.size());
+    for (std::size_t h = 0; h < hyp.cells.size(); ++h) before[h] = static_cast<int>(hyp.trial[h].phase);
     rk = residual();
     track_branches(k);
     long long moved = 0, moved_all = 0;
-    for (std::size_t h = 0; h < hyp_cells.size(); ++h) moved += tangent_moved(h, before[h]);
+    for (std::size_t h = 0; h < hyp.cells.size(); ++h) moved += tangent_moved(h, before[h]);
     MPI_Allreduce(&moved, &moved_all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
     if (newton_monitor()) {
       long long c[4] = {0, 0, 0, 0};  // owned elements: virgin, unloading, reloading, held
-      for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-        if (!lm.cell_owned[hyp_cells[h]]) continue;
-        c[0] += trial[h].phase == fem::LoadingPhase::Virgin;
-        c[1] += trial[h].phase == fem::LoadingPhase::Unloading;
-        c[2] += trial[h].phase == fem::LoadingPhase::Reloading;
-        c[3] += hold[h] != fem::Hold::None;
+      for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+        if (!lm.cell_owned[hyp.cells[h]]) continue;
+        c[0] += hyp.trial[h].phase == fem::LoadingPhase::Virgin;
+        c[1] += hyp.trial[h].phase == fem::LoadingPhase::Unloading;
+        c[2] += hyp.trial[h].phase == fem::LoadingPhase::Reloading;
+        c[3] += hyp.hold[h] != fem::Hold::None;
       }
       MPI_Allreduce(MPI_IN_PLACE, c, 4, MPI_LONG_LONG, MPI_SUM, lm.comm);
       // The predictor (first iteration): the residual its prediction left, relative to r_0.
@@ -143,7 +143,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     // of the linear solve: a sharper solve would be wasted.
     if (moved_all > 0) eta = std::max(eta, 1e-2);
   }
-  int sat = saturated ? 1 : 0, any_sat = 0;
+  int sat = hyp.saturated ? 1 : 0, any_sat = 0;
   MPI_Allreduce(&sat, &any_sat, 1, MPI_INT, MPI_MAX, lm.comm);
   why = fmt::format("Newton did not converge in {} iterations{}", opt.max_newton,
                     any_sat ? " (the virgin compressibility law cannot absorb the strain of some elements)" : "");
@@ -157,33 +157,33 @@ bool MechanicsSolver::Impl::tangent_differs(std::size_t h, int phase_a, int phas
     return p == static_cast<int>(fem::LoadingPhase::Unloading) || p == static_cast<int>(fem::LoadingPhase::Reloading);
   };
   return !(unload_reload(phase_a) && unload_reload(phase_b) &&
-           lm.materials[lm.cell_material[hyp_cells[h]]].hypo.rule == fem::InversionRule::SigmaMax);
+           lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule == fem::InversionRule::SigmaMax);
 }
 
 void MechanicsSolver::Impl::track_branches(int k) {
   const int enough = k >= kHoldOnFirstChangeFrom ? 1 : 2;
-  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-    const auto p = static_cast<std::int8_t>(trial[h].phase);
-    if (piece[h] != 0 && p != piece[h] && ++flips[h] >= enough && hold[h] == fem::Hold::None) {
-      hold[h] = fem::Hold::UnloadReload;
-      hold_dir[h] = static_cast<std::int8_t>(trial[h].J > 0 ? +1 : trial[h].J < 0 ? -1 : guess[h]);
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+    const auto p = static_cast<std::int8_t>(hyp.trial[h].phase);
+    if (hyp.piece[h] != 0 && p != hyp.piece[h] && ++hyp.flips[h] >= enough && hyp.hold[h] == fem::Hold::None) {
+      hyp.hold[h] = fem::Hold::UnloadReload;
+      hyp.hold_dir[h] = static_cast<std::int8_t>(hyp.trial[h].J > 0 ? +1 : hyp.trial[h].J < 0 ? -1 : hyp.guess[h]);
     }
-    piece[h] = p;
+    hyp.piece[h] = p;
   }
 }
 
 double MechanicsSolver::Impl::held_off_branch() {
   double mine = 0;
-  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-    if (hold[h] == fem::Hold::None) continue;
-    const double delta = trial[h].J - trial[h].J_knee;
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+    if (hyp.hold[h] == fem::Hold::None) continue;
+    const double delta = hyp.trial[h].J - hyp.trial[h].J_knee;
     const bool wrong = delta > 0;  // held on unloading/reloading, ended beyond the knee
     if (!wrong) continue;
-    const int c = hyp_cells[h];
+    const int c = hyp.cells[h];
     if (lm.cell_owned[c]) {
       const fem::Material& m = lm.materials[lm.cell_material[c]];
       Vec6 ds;
-      for (int i = 0; i < 6; ++i) ds[i] = delta * m.Dhat[6 * i + ZZ] * 1e6 / trial[h].c_tangent;
+      for (int i = 0; i < 6; ++i) ds[i] = delta * m.Dhat[6 * i + ZZ] * 1e6 / hyp.trial[h].c_tangent;
       double fe[12] = {};
       fem::tet4_add_internal_force(geo[c], ds, fe);
       double n2 = 0;
@@ -197,14 +197,14 @@ double MechanicsSolver::Impl::held_off_branch() {
 }
 
 void MechanicsSolver::Impl::commit(const std::vector<double>& dp_target) {
-  for (std::size_t h = 0; h < hyp_cells.size(); ++h) {
-    const double d = dp_target[hyp_cells[h]] - dp_cell[hyp_cells[h]];
-    if (d != 0) last_ddp[h] = d < 0 ? -1 : +1;
-    committed[h].eps = trial_eps[h];
-    committed[h].dsig = trial[h].dsig;
-    committed[h].hypo = trial[h].hypo;
-    committed_phase[h] = trial[h].phase;
-    committed_c[h] = trial[h].c_tangent;
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+    const double d = dp_target[hyp.cells[h]] - dp_cell[hyp.cells[h]];
+    if (d != 0) hyp.last_ddp[h] = d < 0 ? -1 : +1;
+    hyp.committed[h].eps = hyp.trial_eps[h];
+    hyp.committed[h].dsig = hyp.trial[h].dsig;
+    hyp.committed[h].hypo = hyp.trial[h].hypo;
+    hyp.committed_phase[h] = hyp.trial[h].phase;
+    hyp.committed_c[h] = hyp.trial[h].c_tangent;
   }
   dp_cell = dp_target;
 }
@@ -234,10 +234,10 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
 
   // A failed step leaves the state of the previous one (committed sub-steps are undone).
   const std::vector<double> start = dp_cell;
-  const auto committed_start = committed;
-  const auto phase_start = committed_phase;
-  const auto c_start = committed_c;
-  const auto last_ddp_start = last_ddp;  // the direction of the next step's first tangent
+  const auto committed_start = hyp.committed;
+  const auto phase_start = hyp.committed_phase;
+  const auto c_start = hyp.committed_c;
+  const auto last_ddp_start = hyp.last_ddp;  // the direction of the next step's first tangent
   UGS_PETSC(VecCopy(u, u_step));
   if (coupling) coupling->begin_step();
   double done = 0, h = 1;
@@ -262,10 +262,10 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
       rep.substep_reason = fmt::format("{} (relative residuals {})", why, history_text(rep.residuals));
     if (h / 2 < h_min * (1 - 1e-12) || (!has_hyp && !coupling)) {
       if (coupling) coupling->revert_step();
-      committed = committed_start;
-      committed_phase = phase_start;
-      committed_c = c_start;
-      last_ddp = last_ddp_start;
+      hyp.committed = committed_start;
+      hyp.committed_phase = phase_start;
+      hyp.committed_c = c_start;
+      hyp.last_ddp = last_ddp_start;
       dp_cell = start;
       UGS_PETSC(VecCopy(u_step, u));
       UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));

@@ -83,7 +83,7 @@ void MechanicsSolver::Impl::refresh_basis() {
 }
 
 void MechanicsSolver::Impl::remember_increment_from(Vec base) {
-  if (!mat_created) return;  // (no matrix yet: the step had no load)
+  if (!assembler.mat_created) return;  // (no matrix yet: the step had no load)
   Vec v, av;
   UGS_PETSC(VecDuplicate(u, &v));
   UGS_PETSC(VecDuplicate(u, &av));

@@ -98,8 +98,8 @@ CellResults MechanicsSolver::gather_cells() {
     double ue[12];
     s.gather_element(ua, c, ue);
     const Vec6 eps = fem::tet4_strain(s.geo[c], ue);
-    const int h = s.hyp_of_cell[c];
-    const Vec6 ds = h < 0 ? s.elastic_stress(c, eps) : s.committed[h].dsig;
+    const int h = s.hyp.of_cell[c];
+    const Vec6 ds = h < 0 ? s.elastic_stress(c, eps) : s.hyp.committed[h].dsig;
     const auto& t = lm.cells[c];
     const double zc = 0.25 * (lm.x[t[0]][2] + lm.x[t[1]][2] + lm.x[t[2]][2] + lm.x[t[3]][2]);
     const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]]);
@@ -109,9 +109,9 @@ CellResults MechanicsSolver::gather_cells() {
     for (double v : fem::stress_to_output(tot)) stress.push_back(v);
     for (double v : fem::stress_to_output(ds)) dstress.push_back(v);
     if (h >= 0) {
-      cm.push_back(s.committed_c[h] * 1e-6);
-      state.push_back(static_cast<double>(static_cast<int>(s.committed_phase[h])));
-      smax.push_back(s.committed[h].hypo.sigma_max * 1e6);
+      cm.push_back(s.hyp.committed_c[h] * 1e-6);
+      state.push_back(static_cast<double>(static_cast<int>(s.hyp.committed_phase[h])));
+      smax.push_back(s.hyp.committed[h].hypo.sigma_max * 1e6);
     } else {
       cm.push_back(m.law == fem::Law::Linear ? fem::cm_from_ez(m.E_z, m.ratios) : 1.0 / s.inv_c0[c]);
       state.push_back(0.0);
@@ -140,14 +140,14 @@ SavedState MechanicsSolver::gather_state() {
   for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
     if (!lm.cell_owned[ci]) continue;
     dp.push_back(s.dp_cell[ci]);
-    const int h = s.hyp_of_cell[ci];
-    const fem::PointState ps = h >= 0 ? s.committed[h] : fem::PointState{};
+    const int h = s.hyp.of_cell[ci];
+    const fem::PointState ps = h >= 0 ? s.hyp.committed[h] : fem::PointState{};
     eps.insert(eps.end(), ps.eps.begin(), ps.eps.end());
     dsig.insert(dsig.end(), ps.dsig.begin(), ps.dsig.end());
     hypo.push_back(ps.hypo.sigma_max);
     hypo.push_back(ps.hypo.sigma_inv);
     hypo.push_back(ps.hypo.direction);
-    hypo.push_back(h >= 0 ? s.last_ddp[h] : 0);
+    hypo.push_back(h >= 0 ? s.hyp.last_ddp[h] : 0);
   }
   st.eps = s.gather_cells_k(eps, 6);
   st.dsig = s.gather_cells_k(dsig, 6);
@@ -191,20 +191,20 @@ void MechanicsSolver::restore_state(const SavedState& st) {
     const auto dp = bcast(st.dp, nc);
     for (std::size_t c = 0; c < lm.n_cells(); ++c) s.dp_cell[c] = dp[lm.cell_index[c]];
   }
-  for (std::size_t h = 0; h < s.hyp_cells.size(); ++h) {
-    const int c = s.hyp_cells[h];
+  for (std::size_t h = 0; h < s.hyp.cells.size(); ++h) {
+    const int c = s.hyp.cells[h];
     const std::size_t e = lm.cell_index[c];
-    fem::PointState& ps = s.committed[h];
+    fem::PointState& ps = s.hyp.committed[h];
     for (int k = 0; k < 6; ++k) ps.eps[k] = eps[6 * e + k], ps.dsig[k] = dsig[6 * e + k];
     ps.hypo.sigma_max = hypo[4 * e];
     ps.hypo.sigma_inv = hypo[4 * e + 1];
     ps.hypo.direction = hypo[4 * e + 2] < 0 ? -1 : +1;
-    s.last_ddp[h] = hypo[4 * e + 3] > 0 ? +1 : -1;
+    s.hyp.last_ddp[h] = hypo[4 * e + 3] > 0 ? +1 : -1;
     const fem::HypoResult r =
         fem::hypo_integrate(lm.materials[lm.cell_material[c]].hypo, ps.hypo, s.start_sigma(static_cast<int>(h)), 0.0,
                             ps.hypo.direction);
-    s.committed_phase[h] = r.phase;
-    s.committed_c[h] = r.c_tangent;
+    s.hyp.committed_phase[h] = r.phase;
+    s.hyp.committed_c[h] = r.c_tangent;
   }
 }
 

@@ -52,6 +52,68 @@ inline std::string history_text(const std::vector<double>& h) {
   return s;
 }
 
+// The parts of the solver's state, each owned by one concern (the methods of Impl below use them):
+
+// Hypo-plastic state store: per hypo-plastic element h (cells[h] is its local cell), the committed
+// state of the last converged (sub-)step, the trial state of the current Newton iterate, and the
+// knee holds of the iteration (newton.cpp).
+struct HypoStateStore {
+  std::vector<std::int32_t> of_cell;   // per local cell: its h, or -1
+  std::vector<std::int32_t> cells;     // per h: the local cell
+  std::vector<fem::PointState> committed;
+  std::vector<fem::LoadingPhase> committed_phase;
+  std::vector<double> committed_c;     // 1/MPa
+  std::vector<fem::PointUpdate> trial;
+  std::vector<Vec6> trial_eps;
+  std::vector<std::int8_t> guess;      // direction of the first tangent of the step
+  std::vector<std::int8_t> last_ddp;   // sign of the element's last pressure change
+  // The knee of the law (hypoplastic.hpp): elements that change branch back and forth are held
+  // on one branch for the rest of the (sub-)step; the convergence test checks the held branches.
+  std::vector<std::int8_t> piece;      // phase at the last Newton iterate (0: none yet)
+  std::vector<std::uint8_t> flips;
+  std::vector<fem::Hold> hold;
+  std::vector<std::int8_t> hold_dir;   // direction the element was held with (inversion stress)
+  long long n_global = 0;              // over all ranks
+  bool saturated = false;
+  std::size_t size() const { return cells.size(); }
+};
+
+// Assembler: the sparsity pattern of the owned rows, the assembled values, and which tangent each
+// hypo-plastic element contributes to them (incremental assembly, assembly.cpp).
+struct Assembler {
+  std::vector<PetscInt> node_ptr;      // per owned node: range of its neighbour blocks
+  std::vector<std::int64_t> node_cols; // neighbour global node numbers, sorted per row
+  std::vector<PetscInt> rowptr, cols;  // scalar CSR of the owned rows (global columns)
+  std::vector<double> vals_lin, vals, diag_scale;
+  std::vector<fem::Mat6> assembled_Dt;
+  std::vector<std::int8_t> assembled_phase;  // branch in the matrix
+  bool have_lin = false, mat_created = false, mat_changed = false;
+  // Incremental assembly: an element's stiffness is updated when its tangent
+  // moved by more than kTangentChange (relative, largest entry); a full assembly every
+  // kFullAssemblyEvery updates.
+  static constexpr double kTangentChange = 5e-3;
+  static constexpr int kFullAssemblyEvery = 100;
+  int updates_since_full = 0;
+};
+
+// Preconditioner-reuse policy: what the last setup and solves cost, in iteration counts only
+// (never measured time: the decision changes the numbers, reuse_rule.hpp, linear_solve.cpp).
+struct PreconditionerReuse {
+  static constexpr double kFactorIpd = 5.0;      // iterations per decade a kept factorization gets
+  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off (reuse_rule.hpp)
+  bool valid = false;                  // a preconditioner has been set up
+  double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
+  int setups = 0;
+  std::vector<std::int8_t> phase;      // per hypo-plastic element: branch in the matrix of the last setup
+  PetscInt user_maxit = -1;
+  // Whether the preconditioner of the last setup still converges at a rate worth keeping.
+  bool rate_ok(bool factored) const;
+  // The iteration budget of a solve with a kept preconditioner (it is rebuilt if that is not enough).
+  PetscInt budget(bool factored, double rtol) const;
+  // Records a solve's rate (iterations per decade of residual reduction).
+  void record(int iterations, double reduction, bool fresh);
+};
+
 struct MechanicsSolver::Impl {
   SolverOptions opt;
   LocalMesh lm;
@@ -60,25 +122,7 @@ struct MechanicsSolver::Impl {
   std::vector<fem::Tet4> geo;
   std::vector<double> s0;              // initial effective vertical stress magnitude [MPa]
   std::vector<double> inv_c0;          // elastic law: 1 / c_M(s0) [Pa]
-  std::vector<std::int32_t> hyp_of_cell;
-  std::vector<std::int32_t> hyp_cells;
-  std::vector<fem::PointState> committed;
-  std::vector<fem::LoadingPhase> committed_phase;
-  std::vector<double> committed_c;     // 1/MPa
-  std::vector<fem::PointUpdate> trial;
-  std::vector<Vec6> trial_eps;
-  std::vector<std::int8_t> guess;
-  std::vector<std::int8_t> last_ddp;   // sign of the element's last pressure change
-  // The knee of the law (hypoplastic.hpp): elements that change branch back and forth are held
-  // on one branch for the rest of the (sub-)step; the convergence test checks the held branches.
-  std::vector<std::int8_t> piece;      // phase at the last Newton iterate (0: none yet)
-  std::vector<std::uint8_t> flips;
-  std::vector<fem::Hold> hold;
-  std::vector<std::int8_t> hold_dir;   // direction the element was held with (inversion stress)
-  std::vector<fem::Mat6> assembled_Dt;
-  std::vector<std::int8_t> assembled_phase, pc_phase;  // branch in the matrix / in the matrix of the last PC setup
-  long long n_hyp_global = 0;
-  bool saturated = false;
+  HypoStateStore hyp;
   // Some rank has hypo-plastic elements: the problem is nonlinear and its consistent tangent is not
   // symmetric, so the Krylov method is GMRES and MUMPS factors LU; CHOLMOD (Cholesky only) factors
   // the matrix of the symmetric form of the tangent (material_point.hpp; SPD, unlike the symmetric
@@ -90,26 +134,11 @@ struct MechanicsSolver::Impl {
   std::vector<double> fext, fint;      // 3 per owned node
 
   // ---- linear system --------------------------------------------------------------------------
-  std::vector<PetscInt> node_ptr;      // per owned node: range of its neighbour blocks
-  std::vector<std::int64_t> node_cols; // neighbour global node numbers, sorted per row
-  std::vector<PetscInt> rowptr, cols;  // scalar CSR of the owned rows (global columns)
-  std::vector<double> vals_lin, vals, diag_scale;
-  bool have_lin = false, mat_created = false, mat_changed = false;
-  // Incremental assembly: an element's stiffness is updated when its tangent
-  // moved by more than kTangentChange (relative, largest entry); a full assembly every
-  // kFullAssemblyEvery updates.
-  static constexpr double kTangentChange = 5e-3;
-  static constexpr int kFullAssemblyEvery = 100;
-  static constexpr double kFactorIpd = 5.0;      // iterations per decade a kept factorization gets
-  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off (reuse_rule.hpp)
-  int updates_since_full = 0;
+  Assembler assembler;
+  PreconditionerReuse reuse;
   Mat A = nullptr, P = nullptr;
-  PetscInt user_maxit_ = -1;
   Vec u = nullptr, u_save = nullptr, u_step = nullptr, r = nullptr, du = nullptr;
   KSP ksp = nullptr;
-  bool pc_valid = false;
-  double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
-  int pc_setups = 0;
   // Predictor: the span of the last step increments (orthonormal), Galerkin-projected.
   static constexpr int kRecycle = 24;
   std::vector<Vec> basis, abasis;  // W (A-orthonormal) and A W
@@ -191,7 +220,7 @@ struct MechanicsSolver::Impl {
 
   double start_sigma(int h) const {
     // Magnitude of the effective vertical stress at the start of the step [MPa].
-    return s0[hyp_cells[h]] - committed[h].dsig[ZZ] * 1e-6;
+    return s0[hyp.cells[h]] - hyp.committed[h].dsig[ZZ] * 1e-6;
   }
 
   void external_force(const std::vector<double>& dp);
@@ -207,12 +236,17 @@ struct MechanicsSolver::Impl {
   // Builds (or refreshes) the tangent matrix from the current trial states.
   void assemble();
 
-  const fem::Mat6& tangent(std::size_t h) const { return trial[h].Dt; }
+  const fem::Mat6& tangent(std::size_t h) const { return hyp.trial[h].Dt; }
 
   static double relative_change(const fem::Mat6& a, const fem::Mat6& b);
 
   // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
   void scatter_dummy_diag(int c);
+
+  // A linear problem preconditioned by hypre (whatever -pc_type chose): A is built as hypre's
+  // matrix. (With hypo-plastic elements A changes while a preconditioner is kept, and BoomerAMG's
+  // fine level must keep the matrix it was set up with: PCHYPRE's converted copy.)
+  bool hypre_owns_matrix() const;
 
   // Copies the assembled values into A: every row, or the rows of `changed_nodes` (owned).
   void upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes);
@@ -289,7 +323,7 @@ struct MechanicsSolver::Impl {
   bool tangent_differs(std::size_t h, int phase_a, int phase_b) const;
   // Whether an element's tangent changed with its loading phase since `phase_before`.
   bool tangent_moved(std::size_t h, int phase_before) const {
-    return tangent_differs(h, phase_before, static_cast<int>(trial[h].phase));
+    return tangent_differs(h, phase_before, static_cast<int>(hyp.trial[h].phase));
   }
 
   // The consistency of the held branches at a converged iterate. A held element whose J ended on

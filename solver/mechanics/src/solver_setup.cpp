@@ -8,7 +8,7 @@ void MechanicsSolver::Impl::setup_elements() {
   geo.resize(nc);
   s0.resize(nc);
   inv_c0.assign(nc, 0.0);
-  hyp_of_cell.assign(nc, -1);
+  hyp.of_cell.assign(nc, -1);
   collective(lm.comm, [&] {
     for (std::size_t c = 0; c < nc; ++c) {
       const auto& t = lm.cells[c];
@@ -22,37 +22,37 @@ void MechanicsSolver::Impl::setup_elements() {
       s0[c] = -lm.initial.effective_stress(zc, m.biot)[ZZ] * 1e-6;
       if (m.law == fem::Law::Elastic) inv_c0[c] = 1e6 / m.hypo.cm(s0[c]);
       if (m.law == fem::Law::Hypoplastic) {
-        hyp_of_cell[c] = static_cast<std::int32_t>(hyp_cells.size());
-        hyp_cells.push_back(static_cast<std::int32_t>(c));
+        hyp.of_cell[c] = static_cast<std::int32_t>(hyp.cells.size());
+        hyp.cells.push_back(static_cast<std::int32_t>(c));
       }
     }
   });
-  const std::size_t nh = hyp_cells.size();
+  const std::size_t nh = hyp.cells.size();
   int mine = nh ? 1 : 0, any = 0;
   MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
   has_hyp = any != 0;
-  committed.resize(nh);
-  committed_phase.assign(nh, fem::LoadingPhase::Virgin);
-  committed_c.resize(nh);
-  trial.resize(nh);
-  trial_eps.resize(nh);
-  guess.assign(nh, +1);
-  last_ddp.assign(nh, -1);  // the geostatic state ends a virgin compression
-  piece.assign(nh, 0);
-  flips.assign(nh, 0);
-  hold.assign(nh, fem::Hold::None);
-  hold_dir.assign(nh, +1);
-  assembled_Dt.resize(nh);
-  assembled_phase.assign(nh, -1);
-  pc_phase.assign(nh, -1);
+  hyp.committed.resize(nh);
+  hyp.committed_phase.assign(nh, fem::LoadingPhase::Virgin);
+  hyp.committed_c.resize(nh);
+  hyp.trial.resize(nh);
+  hyp.trial_eps.resize(nh);
+  hyp.guess.assign(nh, +1);
+  hyp.last_ddp.assign(nh, -1);  // the geostatic state ends a virgin compression
+  hyp.piece.assign(nh, 0);
+  hyp.flips.assign(nh, 0);
+  hyp.hold.assign(nh, fem::Hold::None);
+  hyp.hold_dir.assign(nh, +1);
+  assembler.assembled_Dt.resize(nh);
+  assembler.assembled_phase.assign(nh, -1);
+  reuse.phase.assign(nh, -1);
   {
     long long mine_h = static_cast<long long>(nh);
-    MPI_Allreduce(&mine_h, &n_hyp_global, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
+    MPI_Allreduce(&mine_h, &hyp.n_global, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
   }
   for (std::size_t h = 0; h < nh; ++h) {
-    const int c = hyp_cells[h];
-    committed[h].hypo = fem::HypoState::virgin(s0[c]);
-    committed_c[h] = lm.materials[lm.cell_material[c]].hypo.cm(s0[c]);
+    const int c = hyp.cells[h];
+    hyp.committed[h].hypo = fem::HypoState::virgin(s0[c]);
+    hyp.committed_c[h] = lm.materials[lm.cell_material[c]].hypo.cm(s0[c]);
   }
   dp_cell.assign(lm.n_cells(), 0.0);
   fext.assign(3 * lm.n_owned, 0.0);
@@ -65,8 +65,8 @@ void MechanicsSolver::Impl::setup_pattern() {
   for (std::size_t c = 0; c < lm.n_cells(); ++c)
     for (auto v : lm.cells[c])
       if (v < n) cells_of[v].push_back(static_cast<std::int32_t>(c));
-  node_ptr.assign(n + 1, 0);
-  node_cols.clear();
+  assembler.node_ptr.assign(n + 1, 0);
+  assembler.node_cols.clear();
   std::vector<std::int64_t> row;
   for (int a = 0; a < n; ++a) {
     row.clear();
@@ -74,20 +74,20 @@ void MechanicsSolver::Impl::setup_pattern() {
       for (auto v : lm.cells[c]) row.push_back(lm.global[v]);
     std::sort(row.begin(), row.end());
     row.erase(std::unique(row.begin(), row.end()), row.end());
-    node_cols.insert(node_cols.end(), row.begin(), row.end());
-    node_ptr[a + 1] = static_cast<PetscInt>(node_cols.size());
+    assembler.node_cols.insert(assembler.node_cols.end(), row.begin(), row.end());
+    assembler.node_ptr[a + 1] = static_cast<PetscInt>(assembler.node_cols.size());
   }
-  rowptr.assign(3 * n + 1, 0);
-  cols.resize(9 * node_cols.size());
+  assembler.rowptr.assign(3 * n + 1, 0);
+  assembler.cols.resize(9 * assembler.node_cols.size());
   for (int a = 0; a < n; ++a) {
-    const PetscInt nb = node_ptr[a], d = node_ptr[a + 1] - nb;
+    const PetscInt nb = assembler.node_ptr[a], d = assembler.node_ptr[a + 1] - nb;
     for (int ci = 0; ci < 3; ++ci) {
-      rowptr[3 * a + ci] = 9 * nb + ci * 3 * d;
+      assembler.rowptr[3 * a + ci] = 9 * nb + ci * 3 * d;
       for (PetscInt k = 0; k < d; ++k)
-        for (int e = 0; e < 3; ++e) cols[9 * nb + ci * 3 * d + 3 * k + e] = static_cast<PetscInt>(3 * node_cols[nb + k] + e);
+        for (int e = 0; e < 3; ++e) assembler.cols[9 * nb + ci * 3 * d + 3 * k + e] = static_cast<PetscInt>(3 * assembler.node_cols[nb + k] + e);
     }
   }
-  rowptr[3 * n] = static_cast<PetscInt>(cols.size());
+  assembler.rowptr[3 * n] = static_cast<PetscInt>(assembler.cols.size());
 }
 
 void MechanicsSolver::Impl::setup_vectors() {
