@@ -40,7 +40,7 @@ struct Dir {
 
 TEST(ReportFaults, OneMaxChiAndThePlotData) {
   Dir d("report-faults");
-  auto r = test::run(std::string(UGS_BINARY_DIR) + "/tests/contact/contact_make_case " + d.path.string() + " --dp 6 --cell 100");
+  auto r = test::run(std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/contact_make_case " + d.path.string() + " --dp 6 --cell 100");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = test::run(test::tool("ugs-solve") + " " + d / "faulted.msh" + " --case " + d / "case.toml" + " --pressure " + d / "flow.h5" +
                 " -o " + d / "out.h5");

@@ -64,7 +64,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     // looser than what reaches the target in one more iteration of a linear problem. Not with
     // hypo-plastic elements: which elements are held at their knee, and on which side, is decided
     // on the iterates, and the converged state depends on it (the response there is set-valued:
-    // 2 % of max |u| between MUMPS and BoomerAMG corrections on tests/contact/test_locked_history).
+    // 2 % of max |u| between MUMPS and BoomerAMG corrections on tests/fault_mechanics/test_locked_history).
     // Each correction is then solved to the Newton target, so that the iterates, the held set and
     // the answer are those of an exact Newton, whatever the linear solver, its preconditioner
     // reuse, the predictor or a coupling (a locked fault) (docs/mechanics.md "Inexact Newton").

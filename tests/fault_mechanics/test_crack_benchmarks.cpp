@@ -10,7 +10,7 @@
 //       g_T(s) = 4 (1 - nu^2) / E sigma sin psi (cos psi - mu sin psi) sqrt(b^2 - s^2) within 5 %
 //       for |s| <= 0.8 b; the crack slips over its length, and Newton converges in at most
 //       kNewtonBound iterations (the active set settles after the first).
-// The profiles go to <build>/tests/contact/v4_profile.csv and v5_profile.csv; plot_cracks.py draws
+// The profiles go to <build>/tests/fault_mechanics/v4_profile.csv and v5_profile.csv; plot_cracks.py draws
 // them against the closed forms.
 #include <cmath>
 #include <fstream>
@@ -97,7 +97,7 @@ TEST(V5, SneddonPressurisedCrackOpening) {
   CrackRun c;
   run(c, 0.0, 30.0, fem::Vec6{}, p, contact::SaddleSolver::Mumps);
   ASSERT_TRUE(c.rep.converged) << c.rep.failure;
-  std::ofstream csv(std::string(UGS_BINARY_DIR) + "/tests/contact/v5_profile.csv");
+  std::ofstream csv(std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/v5_profile.csv");
   csv << "s_m,opening_mm,exact_mm,normal_traction_MPa\n";
   double worst = 0;
   int checked = 0, open = 0;
@@ -125,7 +125,7 @@ TEST(V4, PhanInclinedCrackWithFriction) {
   CrackRun c;
   run(c, psi, 30.0, fem::Vec6{-sigma, 0, 0, 0, 0, 0}, 0.0, contact::SaddleSolver::Mumps);
   ASSERT_TRUE(c.rep.converged) << c.rep.failure;
-  std::ofstream csv(std::string(UGS_BINARY_DIR) + "/tests/contact/v4_profile.csv");
+  std::ofstream csv(std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/v4_profile.csv");
   csv << "s_m,slip_mm,exact_mm,normal_traction_MPa,shear_traction_MPa\n";
   double worst_g = 0, worst_t = 0;
   int checked = 0, slipping = 0;

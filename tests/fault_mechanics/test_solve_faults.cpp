@@ -41,7 +41,7 @@ struct Dir {
 };
 
 std::string make_case(const Dir& d, const std::string& args = "") {
-  return std::string(UGS_BINARY_DIR) + "/tests/contact/contact_make_case " + d.path.string() + " " + args;
+  return std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/contact_make_case " + d.path.string() + " " + args;
 }
 
 std::string solve(const Dir& d, const std::string& args, int ranks = 1) {

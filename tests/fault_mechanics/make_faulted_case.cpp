@@ -65,10 +65,10 @@ int main(int argc, char** argv) {
       m, "F", {300, 0, -1000}, {-1, 0, 1}, [](const Point3& c) { return c[1] > 100 && c[1] < 500 && c[2] > -800 && c[2] < -300; },
       1e-6);
   test::insert_all_faults(m);
-  m.provenance.push_back("contact_make_case (tests/contact)");
+  m.provenance.push_back("contact_make_case (tests/fault_mechanics)");
   write_msh(m, (dir / "faulted.msh").string());
 
-  std::ofstream(dir / "case.toml") << fmt::format(R"(# Faulted test case (tests/contact): linear elastic rock, a reservoir block crossed by fault F.
+  std::ofstream(dir / "case.toml") << fmt::format(R"(# Faulted test case (tests/fault_mechanics): linear elastic rock, a reservoir block crossed by fault F.
 [initial_stress]
 surface_elevation_m = 0
 lithostatic_gradient_MPa_per_m = 0.0226

@@ -19,7 +19,7 @@
 //    first-order offset of the hat's centroid from the node on irregular spacing drops out;
 //  - irregular meshes: nodes moved by up to a quarter cell, off the fault only or along it too;
 //  - the fast case (12 cells per h) in CI, the three refinements (6, 12, 24) in test_offset_fault_long (bench-long).
-// The profiles go to <build>/tests/contact/v8_profile_<n>.csv (plot_offset_fault.py).
+// The profiles go to <build>/tests/fault_mechanics/v8_profile_<n>.csv (plot_offset_fault.py).
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -256,7 +256,7 @@ V8Result run_v8(const V8Options& o) {
     }
   }
   if (o.write_profile) {
-    std::ofstream csv(std::string(UGS_BINARY_DIR) + "/tests/contact/v8_profile_" + std::to_string(o.n) + ".csv");
+    std::ofstream csv(std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/v8_profile_" + std::to_string(o.n) + ".csv");
     csv << "side,z_m,s_m,dsigma_n_MPa,dtau_dip_MPa,exact_dsigma_n_MPa,exact_dtau_dip_MPa,checked\n";
     for (const Row& w : front)
       csv << 0 << ',' << w.z << ',' << w.s << ',' << w.tn * 1e-6 << ',' << w.ts * 1e-6 << ',' << w.en * 1e-6 << ',' << w.es * 1e-6 << ','

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Plots the crack benchmarks V4 (Phan et al. 2003, slip of an inclined crack with friction) and
 V5 (Sneddon, opening of a pressurised crack) against their closed forms, from the profiles that
-test_crack_benchmarks writes into <build>/tests/contact.
+test_crack_benchmarks writes into <build>/tests/fault_mechanics.
 
-    /usr/bin/python3 tests/contact/plot_cracks.py build/tests/contact      # -> cracks.png there
+    /usr/bin/python3 tests/fault_mechanics/plot_cracks.py build/tests/fault_mechanics      # -> cracks.png there
 """
 import csv
 import sys

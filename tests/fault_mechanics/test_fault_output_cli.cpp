@@ -39,7 +39,7 @@ std::string solve(const Dir& d, const std::string& args) {
 }
 
 void make_case(const Dir& d) {
-  const auto r = test::run(std::string(UGS_BINARY_DIR) + "/tests/contact/contact_make_case " + d.path.string() + " --dp 6 --cell 100");
+  const auto r = test::run(std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/contact_make_case " + d.path.string() + " --dp 6 --cell 100");
   ASSERT_EQ(r.exit_code, 0) << r.err;
 }
 

@@ -2,9 +2,9 @@
 """Plots V8 (Jansen et al. 2019, a depleted reservoir offset by a locked fault): the normal and dip
 shear traction change along the fault against the closed form, from the profiles that
 test_offset_fault_long (6, 12, 24 cells per reservoir height) and test_offset_fault (12) write into
-<build>/tests/contact (front side of the slab).
+<build>/tests/fault_mechanics (front side of the slab).
 
-    /usr/bin/python3 tests/contact/plot_offset_fault.py build/tests/contact   # -> offset_fault.png there
+    /usr/bin/python3 tests/fault_mechanics/plot_offset_fault.py build/tests/fault_mechanics   # -> offset_fault.png there
 """
 import csv
 import sys

@@ -1,4 +1,4 @@
-// Test meshes with faults and the checks every faulted mesh must pass (tests/faults).
+// Test meshes with faults and the checks every faulted mesh must pass (tests/fault_insertion).
 //
 // Faults are marked as the issue describes: all tetrahedron faces whose three nodes satisfy a
 // predicate (e.g. on the plane x = 3 inside a rectangle) become a `fault:<name>` triangle group.
