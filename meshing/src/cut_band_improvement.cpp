@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <set>
@@ -247,17 +248,35 @@ private:
     std::sort(cands.begin(), cands.end());
     cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
     build_adjacency(want);
+    surf_slot_.assign(s_.nodes.size(), 0);
+    surf_cache_.clear();
     std::vector<char> touched(s_.nodes.size(), 0);
     std::size_t merged = 0;
     for (const auto& [len, b, a] : cands) {
       if (node_dead_[b] || node_dead_[a] || touched[b] || touched[a]) continue;
       if (!try_collapse(b, a)) continue;
       ++merged;
-      // Incidences around b changed: its neighbourhood waits for the next pass.
+      // Incidences around b changed: its neighbourhood waits for the next pass. The surfaces of
+      // a's neighbours moved with a: computed again when asked.
       for (auto t : tets_of_[b])
         for (auto v : s_.tets[t]) touched[v] = 1;
+      for (auto t : tets_of_[a])
+        for (auto v : s_.tets[t]) surf_slot_[v] = 0;
     }
     return merged;
+  }
+
+  // surfaces_of once per node and collapse pass (a node is the end of several candidate edges);
+  // nullptr when surfaces_of fails. Cleared for a collapse's neighbourhood when it succeeds.
+  const Surfaces* cached_surfaces_of(std::uint32_t v) {
+    if (surf_slot_[v] == 0) {
+      Surfaces s;
+      const bool ok = surfaces_of(v, s);
+      surf_cache_.push_back({ok, std::move(s)});
+      surf_slot_[v] = static_cast<std::uint32_t>(surf_cache_.size());
+    }
+    const auto& c = surf_cache_[surf_slot_[v] - 1];
+    return c.first ? &c.second : nullptr;
   }
 
   bool lies_on(const Surfaces& s, std::uint32_t from, std::uint32_t a) const {
@@ -309,13 +328,14 @@ private:
     // The kept node must lie on b's surfaces and lines (a node on a fault's outline stays on that
     // line: the fault keeps its extent), moved there if needed (within half the edge, staying on
     // its own).
-    Surfaces sb;
-    if (!surfaces_of(b, sb)) return false;
+    const Surfaces* sbp = cached_surfaces_of(b);
+    if (!sbp) return false;
+    const Surfaces& sb = *sbp;
     const Point3 xa = X(a);
     Point3 x = xa;
     if (!lies_on(sb, b, a)) {
-      Surfaces sa;
-      if (!surfaces_of(a, sa) || !merged_position(sa, a, sb, b, 0.5 * norm(sub(X(b), xa)), x)) return false;
+      const Surfaces* sa = cached_surfaces_of(a);
+      if (!sa || !merged_position(*sa, a, sb, b, 0.5 * norm(sub(X(b), xa)), x)) return false;
     }
     const bool moves = x[0] != xa[0] || x[1] != xa[1] || x[2] != xa[2];
     double before = std::numeric_limits<double>::infinity();
@@ -536,6 +556,8 @@ private:
     std::vector<EdgeFace> at_edge;
   };
   mutable Scratch scratch_;  // surfaces_of's arrays
+  std::vector<std::uint32_t> surf_slot_;                 // per node: 1 + its entry in surf_cache_, 0 none
+  std::deque<std::pair<bool, Surfaces>> surf_cache_;     // deque: entries stay put while it grows
   ElementSoup s_;
   std::size_t first_new_;
   double ratio_, smooth_below_, tol_;

@@ -22,11 +22,11 @@ struct Partial {
   double vmin = std::numeric_limits<double>::infinity(), vmax = -std::numeric_limits<double>::infinity();
   double volume = 0, min_angle = 180;
   std::size_t inverted = 0, small = 0;
+  double max_cos = -1;  // the smallest angle's cosine; acos once per chunk, not per tetrahedron
 };
 
-}  // namespace
-
-double min_dihedral_angle_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+// The cosine of the smallest dihedral angle (clamped to [-1, 1]); 1 for a flat or degenerate tetrahedron.
+double worst_dihedral_cos(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   const Point3* p[4] = {&a, &b, &c, &d};
   // Normal of the face opposite each vertex, pointing away from that vertex (all outward or all inward).
   V3 n[4];
@@ -37,13 +37,21 @@ double min_dihedral_angle_deg(const Point3& a, const Point3& b, const Point3& c,
     n[i] = cross(sub(q1, q0), sub(q2, q0));
     if (dot(n[i], sub(*p[i], q0)) > 0) n[i] = {-n[i][0], -n[i][1], -n[i][2]};
     const double len = std::sqrt(dot(n[i], n[i]));
-    if (!(len > 0)) return 0.0;
+    if (!(len > 0)) return 1.0;
     for (auto& x : n[i]) x /= len;
   }
   double worst = -1;  // the dihedral angle is pi minus the angle between two outward normals
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) worst = std::max(worst, -dot(n[i], n[j]));
-  return std::acos(std::clamp(worst, -1.0, 1.0)) * 180.0 / M_PI;
+  return std::clamp(worst, -1.0, 1.0);
+}
+
+double cos_to_deg(double c) { return std::acos(c) * 180.0 / M_PI; }
+
+}  // namespace
+
+double min_dihedral_angle_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return cos_to_deg(worst_dihedral_cos(a, b, c, d));
 }
 
 QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
@@ -68,6 +76,8 @@ QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
     q.tetrahedra += b.size();
     const std::size_t nchunks = (b.size() + chunk - 1) / chunk;
     std::vector<Partial> parts(nchunks);
+    const double cos_small = std::cos(small_angle_deg * M_PI / 180.0);
+    const double cos_lo = cos_small - 1e-9, cos_hi = cos_small + 1e-9;
     auto work = [&](unsigned t) {
       for (std::size_t k = t; k < nchunks; k += nthreads) {
         Partial& p = parts[k];
@@ -80,9 +90,12 @@ QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
           p.vmax = std::max(p.vmax, v);
           p.volume += v;
           p.inverted += v <= 0;
-          const double ang = min_dihedral_angle_deg(A, B, C, D);
-          p.min_angle = std::min(p.min_angle, ang);
-          p.small += ang < small_angle_deg;
+          // acos is decreasing: the smallest angle is acos of the largest cosine, and an angle is
+          // below the bound when its cosine is above the bound's; acos only within rounding of it.
+          const double w = worst_dihedral_cos(A, B, C, D);
+          p.max_cos = std::max(p.max_cos, w);
+          if (w > cos_hi) ++p.small;
+          else if (w >= cos_lo) p.small += cos_to_deg(w) < small_angle_deg;
         }
       }
     };
@@ -90,6 +103,7 @@ QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
     for (unsigned t = 1; t < std::min<std::size_t>(nthreads, nchunks); ++t) pool.emplace_back(work, t);
     work(0);
     for (auto& th : pool) th.join();
+    for (auto& p : parts) p.min_angle = cos_to_deg(p.max_cos);
     MaterialVolume* mv = nullptr;
     for (auto& m : q.materials)
       if (m.name == name) mv = &m;
