@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <map>
 
-#include "solve_twin.hpp"
+#include "ensemble_box.hpp"
 #include "ugs/ensemble/metrics.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/insar/case_params.hpp"
@@ -35,27 +35,13 @@ lower = 0.005
 upper = 0.05
 )";
 
-fs::path make_box() {
-  const fs::path dir = test::make_truth("ensemble-solve");  // the box, a truth run and its noisy PS series up.csv
-  test::spit(dir / "case.toml", test::slurp(dir / "case.toml") + "\n[scenario]\nscale_tolerance = 0.01\n");
-  return dir;
-}
+fs::path make_box() { return test::make_ensemble_box("ensemble-solve"); }
 
 std::string ens_cmd(const fs::path& dir, const std::string& mode, const std::string& spec, const std::string& extra) {
-  return test::tool("ugs-ensemble") + " " + mode + " --spec " + (dir / spec).string() + " --case " + (dir / "case.toml").string() +
-         " --mesh " + (dir / "model.msh").string() + " --solver-command '" + test::solver_command(dir) +
-         "' --phase storage=2013-05-01/2013-11-01 --measured " + (dir / "up.csv").string() +
-         " --window 2009-01-01/2014-12-31 " + extra;
+  return test::ensemble_cmd(dir, mode, spec, extra);
 }
 
-// The table's data lines (comments, which hold the command line, left out).
-std::string data_lines(const fs::path& p) {
-  std::string out, line;
-  std::istringstream in(test::slurp(p));
-  while (std::getline(in, line))
-    if (line.empty() || line[0] != '#') out += line + "\n";
-  return out;
-}
+using test::data_lines;
 
 }  // namespace
 
