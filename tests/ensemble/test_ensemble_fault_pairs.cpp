@@ -173,5 +173,26 @@ TEST(EnsembleFaultPairs, ExceedancePerPairMismatchAndReportMap) {
   EXPECT_NEAR(*std::max_element(os.begin(), os.end()), test::kBoxX0 + 11000.0 * 8 / 12 - 680000, 5e-4);
   EXPECT_EQ(*std::min_element(oz.begin(), oz.end()), -1520.0);
   EXPECT_EQ(*std::max_element(oz.begin(), oz.end()), -1500.0);
+
+  // 4. Two faults whose names differ only in case (F2 renamed f1): their work files stay apart,
+  // F1 (first in byte order) keeps the plain stem f1, f1 gets f1_2.
+  fs::create_directories(dir / "cased");
+  for (const char* f : {"members.csv", "chi_exceedance_pairs.csv"}) {
+    std::string text = test::slurp(dir / "out" / f);
+    for (std::size_t at = 0; (at = text.find("\nF2,", at)) != std::string::npos;) text.replace(at, 4, "\nf1,");
+    test::spit(dir / "cased" / f, text);
+  }
+  const auto rc = test::run(test::tool("ugs-report") + " --results " + (dir / "template.h5").string() + " --mesh " +
+                            (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() + " --ensemble " +
+                            (dir / "cased").string() + " --keep-work -o " + (dir / "report_cased").string());
+  ASSERT_EQ(rc.exit_code, 0) << rc.err;
+  const fs::path work = dir / "report_cased" / "work";
+  for (const char* tag : {"1", "0.8"}) {
+    const fs::path upper = work / fmt::format("ensemble_p_chi_ge_{}_f1.npy", tag), lower = work / fmt::format("ensemble_p_chi_ge_{}_f1_2.npy", tag);
+    ASSERT_TRUE(fs::exists(upper) && fs::exists(lower)) << tag;
+    EXPECT_EQ(fs::file_size(upper), fs::file_size(lower) + 3 * sizeof(double)) << tag;  // F1's 6 pairs, f1's 3
+  }
+  EXPECT_TRUE(fs::exists(work / "ensemble_pools_on_f1.csv"));
+  EXPECT_TRUE(fs::exists(work / "ensemble_pools_on_f1_2.csv"));
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(dir);
 }

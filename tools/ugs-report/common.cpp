@@ -1,5 +1,7 @@
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -55,6 +57,24 @@ std::string slug(const std::string& s) {
   std::string r;
   for (char ch : s) r += std::isalnum(static_cast<unsigned char>(ch)) ? static_cast<char>(std::tolower(ch)) : '_';
   return r;
+}
+
+std::vector<std::string> unique_slugs(const std::vector<std::string>& names) {
+  std::set<std::string> plain, used;
+  for (const auto& n : names) plain.insert(slug(n));
+  std::map<std::string, std::string> stem;  // name -> stem, assigned in byte order of the names
+  for (const auto& n : std::set<std::string>(names.begin(), names.end())) {
+    const std::string base = slug(n);
+    std::string s = base;
+    for (int k = 1; used.count(s);)
+      do s = fmt::format("{}_{}", base, ++k);
+      while (plain.count(s) || used.count(s));
+    used.insert(s);
+    stem[n] = s;
+  }
+  std::vector<std::string> out;
+  for (const auto& n : names) out.push_back(stem.at(n));
+  return out;
 }
 
 std::string mm(double v) { return std::isfinite(v) ? fmt::format("{:.2f}", v) : "n/a"; }

@@ -80,21 +80,25 @@ void exceedance_maps(Context& c, const CsvTable& t) {
   w.commit();
   if (planes.empty()) return;
   const PoolNodes pools = pool_nodes(c);
+  std::vector<std::string> names;
+  for (const auto& p : planes) names.push_back(p.name);
+  const auto slugs = unique_slugs(names);
   for (const auto& [tag, threshold] : {std::pair{"1", 1.0}, std::pair{"0.8", 0.8}}) {
     std::string panels;
-    for (const auto& p : planes) {
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      const Plane& p = planes[k];
       if (p.s.size() < 3) {
         c.notes.push_back(fmt::format("chi_exceedance_pairs.csv: fault {} has {} node pairs, too few for a map", p.name, p.s.size()));
         continue;
       }
-      const std::string stem = fmt::format("ensemble_p_chi_ge_{}_{}", tag, slug(p.name));
+      const std::string stem = fmt::format("ensemble_p_chi_ge_{}_{}", tag, slugs[k]);
       std::vector<double> sz;
       for (std::size_t i = 0; i < p.s.size(); ++i) sz.insert(sz.end(), {p.s[i], p.z[i]});
       const auto& v = threshold == 1.0 ? p.p1 : p.p8;
       insar::write_npy(c.work_file(stem + "_nodes.npy"), sz, {p.s.size(), 2});
       insar::write_npy(c.work_file(stem + ".npy"), v, {v.size()});
       const auto [sx, sy, s0] = strike_of(p.x, p.y, p.s);
-      const std::string outline = write_pool_outlines(c, pools, fmt::format("ensemble_pools_on_{}.csv", slug(p.name)), sx, sy, s0);
+      const std::string outline = write_pool_outlines(c, pools, fmt::format("ensemble_pools_on_{}.csv", slugs[k]), sx, sy, s0);
       const double top = *std::max_element(v.begin(), v.end());
       panels += fmt::format("{}{{\"name\": {}, \"nodes\": {}, \"values\": {}, \"max\": {}, \"pools\": {}, \"title\": {}}}",
                             panels.empty() ? "" : ", ", jstr(p.name), jwork(stem + "_nodes.npy"), jwork(stem + ".npy"), top, outline,

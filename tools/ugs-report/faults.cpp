@@ -261,9 +261,12 @@ void build_faults(Context& c) {
       std::vector<std::vector<double>> values;
       std::vector<std::size_t> where;
       const auto maxima = node_max(sc.step, values, where);
+      std::vector<std::string> names;
+      for (const auto& f : faults_n) names.push_back(f.name);
+      const auto slugs = unique_slugs(names);
       for (std::size_t k = 0; k < faults_n.size(); ++k) {
         const auto& f = faults_n[k];
-        const std::string stem = fmt::format("chi_{}_{}", sc.name, slug(f.name));
+        const std::string stem = fmt::format("chi_{}_{}", sc.name, slugs[k]);
         std::vector<double> sz;
         for (std::size_t i = 0; i < f.nodes.size(); ++i) sz.insert(sz.end(), {f.s[i], f.z[i]});
         std::vector<std::int32_t> tri;
@@ -272,7 +275,7 @@ void build_faults(Context& c) {
         insar::write_npy(c.work_file(stem + "_nodes.npy"), sz, {f.nodes.size(), 2});
         insar::write_npy(c.work_file(stem + "_tri.npy"), tri, {f.tri.size(), 3});
         insar::write_npy(c.work_file(stem + ".npy"), values[k], {values[k].size()});
-        const std::string outline = write_pool_outlines(c, pools, fmt::format("pools_on_{}.csv", slug(f.name)), f.sx, f.sy, f.s0);
+        const std::string outline = write_pool_outlines(c, pools, fmt::format("pools_on_{}.csv", slugs[k]), f.sx, f.sy, f.s0);
         panels += fmt::format("{}{{\"name\": {}, \"nodes\": {}, \"tri\": {}, \"values\": {}, \"max\": {}, \"at\": [{}, {}], "
                               "\"pools\": {}}}",
                               panels.empty() ? "" : ", ", jstr(f.name), jwork(stem + "_nodes.npy"), jwork(stem + "_tri.npy"),
@@ -283,8 +286,12 @@ void build_faults(Context& c) {
       }
     } else {
       const auto faults = insar::read_fault_chi(fr, sc.step, mesh, field);
-      for (const auto& f : faults) {
-        const std::string stem = fmt::format("chi_{}_{}", sc.name, slug(f.name));
+      std::vector<std::string> names;
+      for (const auto& f : faults) names.push_back(f.name);
+      const auto slugs = unique_slugs(names);
+      for (std::size_t k = 0; k < faults.size(); ++k) {
+        const auto& f = faults[k];
+        const std::string stem = fmt::format("chi_{}_{}", sc.name, slugs[k]);
         std::vector<double> sz;
         for (const auto& q : f.sz) sz.insert(sz.end(), q.begin(), q.end());
         insar::write_npy(c.work_file(stem + "_sz.npy"), sz, {f.sz.size(), 3, 2});

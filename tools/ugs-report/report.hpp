@@ -88,6 +88,11 @@ std::string jstr(const std::string& s);
 // Relative path of a work file as plots.py sees it (work/<name>).
 std::string jwork(const std::string& name);
 std::string slug(const std::string& s);
+// File-name stems for names that share a folder (faults): slug() of each, made unique. Names whose
+// slugs collide (F1 and f1, a-b and a_b) keep the plain slug for the first in byte order; the
+// others get _2, _3, ... (skipping any stem another name has). Depends only on the set of names:
+// the same faults give the same file names in any order.
+std::vector<std::string> unique_slugs(const std::vector<std::string>& names);
 std::string mm(double v);  // "3.21"
 
 // The pool pressures of the case's schedules, long format (pool,date,value), as work/pressure.csv
