@@ -260,7 +260,8 @@ TEST(SolveFaults, NewtonFailureNamesTheFaultAndItsNodes) {
 
 // A saddle-point factorisation that fails on every try (MUMPS told not to pivot: a zero pivot on
 // the multiplier rows, INFOG(1)=-10), on 1 and 2 processes: the sub-step is retried down to its
-// smallest (max_substeps = 4, for time) and the run exits 1 with one line naming the step, the solver's reason and the fault, leaving no
+// smallest (max_substeps = 4, for time) and the run exits 1 with one line naming the step, the solver's reason with MUMPS'
+// INFOG(1) and INFOG(2), and the fault, leaving no
 // results. Formerly the first retry reused the failed MUMPS instance and the run ended in "PETSc
 // error 76 in KSPSolve ... MUMPS in solve phase: INFOG(1)=-3" (no step, no fault).
 TEST(SolveFaults, FailedFactorisationExitsOneWithOneLine) {
@@ -276,6 +277,9 @@ TEST(SolveFaults, FailedFactorisationExitsOneWithOneLine) {
     EXPECT_EQ(r.err.find("ugs-solve: error:", line + 1), std::string::npos) << r.err;  // one error line
     EXPECT_NE(text.find("fault 'F'"), std::string::npos) << text;
     EXPECT_NE(text.find("sub-step of 1/4 of the step"), std::string::npos) << text;
+    // MUMPS' own code behind DIVERGED_PC_FAILED, read from the failed factor.
+    EXPECT_NE(text.find("DIVERGED_PC_FAILED (MUMPS INFOG(1) = -10: numerically singular matrix; INFOG(2) = "), std::string::npos)
+        << text;
     EXPECT_EQ(r.err.find("PETSC ERROR"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("PETSc error"), std::string::npos) << r.err;
     for (const char* f : {"out.h5", "out_faults.h5", "out_faults.csv", "out_fault_F.csv"}) EXPECT_FALSE(fs::exists(d / f)) << f;

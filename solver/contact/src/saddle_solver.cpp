@@ -1,8 +1,11 @@
 #include "saddle_solver.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <string>
 
 #include <fmt/format.h>
+#include <petscksp.h>
 
 #include "petsc_call.hpp"
 #include "ugs/contact/dof_mask.hpp"
@@ -21,6 +24,43 @@ bool has_option(const char* name) {
 
 void default_option(const char* name, const char* value) {
   if (!has_option(name)) CHK(PetscOptionsSetValue(nullptr, name, value));
+}
+
+
+// MUMPS' own code behind a failed factorisation or solve, for the failure line: INFOG(1) and
+// INFOG(2) of the MUMPS factor of the KSP's preconditioner or of a field-split block's (MUMPS
+// user's guide, "Error diagnostics"); "" when there is no MUMPS factor or it reports no error.
+// Read before reset(), which destroys the factor; probing errors are ignored (the failure stands).
+std::string mumps_infog(KSP ksp) {
+  PC pc = nullptr;
+  PCType type = nullptr;
+  if (KSPGetPC(ksp, &pc) || PCGetType(pc, &type) || !type) return "";
+  if (!std::strcmp(type, PCFIELDSPLIT)) {
+    PetscInt n = 0;
+    KSP* sub = nullptr;
+    if (PCFieldSplitGetSubKSP(pc, &n, &sub)) return "";
+    std::string note;
+    for (PetscInt i = 0; i < n && note.empty(); ++i) note = mumps_infog(sub[i]);
+    PetscFree(sub);
+    return note;
+  }
+  if (std::strcmp(type, PCLU) && std::strcmp(type, PCCHOLESKY)) return "";
+  Mat f = nullptr;
+  MatSolverType solver = nullptr;
+  if (PCFactorGetMatrix(pc, &f) || !f || MatFactorGetSolverType(f, &solver) || !solver || std::strcmp(solver, MATSOLVERMUMPS))
+    return "";
+  PetscInt i1 = 0, i2 = 0;
+  if (MatMumpsGetInfog(f, 1, &i1) || MatMumpsGetInfog(f, 2, &i2) || i1 >= 0) return "";
+  const char* what = "see the MUMPS user's guide";
+  switch (i1) {
+    case -3: what = "solve called without a valid factorisation"; break;
+    case -5: case -7: case -13: what = "out of memory"; break;
+    case -6: what = "structurally singular matrix, INFOG(2) = its structural rank"; break;
+    case -8: case -9: case -11: case -14: case -15: case -17: case -20:
+      what = "workspace too small (raise -contact_mat_mumps_icntl_14)"; break;
+    case -10: what = "numerically singular matrix"; break;
+  }
+  return fmt::format(" (MUMPS INFOG(1) = {}: {}; INFOG(2) = {})", i1, what, i2);
 }
 
 }  // namespace
@@ -164,16 +204,19 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   try {
     its = linear_solve(A, rtol, sys, stats, reason);
   } catch (const ComputeError& e) {
+    const std::string mumps = mumps_infog(ksp_);
     reset();
     out.ok = false;
-    out.failure = fmt::format("the saddle-point solver ({}) failed: {}", name(), e.what());
+    out.failure = fmt::format("the saddle-point solver ({}) failed: {}{}", name(), e.what(), mumps);
     return out;
   }
   out.iterations = static_cast<int>(its);
   if (reason < 0) {
+    const std::string mumps = mumps_infog(ksp_);
     reset();
     out.ok = false;
-    out.failure = fmt::format("the saddle-point solver ({}) failed: {} after {} iterations", name(), KSPConvergedReasons[reason], its);
+    out.failure = fmt::format("the saddle-point solver ({}) failed: {}{} after {} iterations", name(), KSPConvergedReasons[reason],
+                              mumps, its);
     return out;
   }
   // du (zero on prescribed components) and lambda += dlambda.
