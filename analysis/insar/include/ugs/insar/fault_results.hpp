@@ -1,4 +1,5 @@
-// The safety factor chi = |tau| / (c - sigma_n tan(phi)) (thesis eq. 4.2) on the faults, from a
+// The safety factor chi = |tau| / (c - sigma'_n tan(phi)) (thesis eq. 4.2, on the effective normal
+// traction sigma'_n = sigma_n + p_f, tension positive: docs/theory.md section 6) on the faults, from a
 // fault results file (HDF5 + XDMF: triangles, or interface prisms whose first three nodes are one
 // side, with the cell field `chi` or a node field `chi` averaged to the cells), grouped by fault
 // (the cells' physical tag; names from the mesh's fault:<name> groups when a mesh is given) and
