@@ -10,6 +10,17 @@
 
 namespace ugs::test {
 
+// An [[parameter]] entry, uniform on [lower, upper].
+inline std::string uniform_parameter(const std::string& path, double lower, double upper) {
+  return fmt::format("\n[[parameter]]\npath = \"{}\"\ndistribution = \"uniform\"\nlower = {}\nupper = {}\n", path,
+                     toml_number(lower), toml_number(upper));
+}
+// Parameters of the box: c_R of Pool C (decides the storage uplift), c_R of Pool A (its pressure is
+// the same on both dates of the storage phase), scale_tolerance (unused without a safe-scale search).
+inline const std::string kParamPoolC = uniform_parameter("material.pool_c.c_R", 2.0, 6.0);
+inline const std::string kParamPoolA = uniform_parameter("material.pool_a.c_R", 3.0, 7.0);
+inline const std::string kParamTolerance = uniform_parameter("scenario.scale_tolerance", 0.005, 0.05);
+
 inline std::filesystem::path make_ensemble_box(const std::string& tag) {
   const std::filesystem::path dir = make_truth(tag);  // the box, a truth run and its noisy PS series up.csv
   spit(dir / "case.toml", slurp(dir / "case.toml") + "\n[scenario]\nscale_tolerance = 0.01\n");

@@ -28,29 +28,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kSpec = R"([design]
-method = "sobol"
-members = 40
-seed = 1
-
-[[parameter]]
-path = "material.pool_c.c_R"
-distribution = "uniform"
-lower = 2.0
-upper = 6.0
-
-[[parameter]]
-path = "material.pool_a.c_R"
-distribution = "uniform"
-lower = 3.0
-upper = 7.0
-
-[[parameter]]
-path = "scenario.scale_tolerance"
-distribution = "uniform"
-lower = 0.005
-upper = 0.05
-)";
+const std::string kSpec = std::string("[design]\nmethod = \"sobol\"\nmembers = 40\nseed = 1\n") + test::kParamPoolC +
+                          test::kParamPoolA + test::kParamTolerance;
 
 struct Index {
   double s1, s1_low, s1_high, st, st_low, st_high;

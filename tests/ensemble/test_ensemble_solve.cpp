@@ -21,19 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kParams = R"(
-[[parameter]]
-path = "material.pool_c.c_R"
-distribution = "uniform"
-lower = 2.0
-upper = 6.0
-
-[[parameter]]
-path = "scenario.scale_tolerance"
-distribution = "uniform"
-lower = 0.005
-upper = 0.05
-)";
+const std::string kParams = test::kParamPoolC + test::kParamTolerance;
 
 fs::path make_box() { return test::make_ensemble_box("ensemble-solve"); }
 
@@ -48,7 +36,7 @@ using test::data_lines;
 TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   if (!test::have_solver()) GTEST_SKIP() << "ugs-solve is not built";
   const fs::path dir = make_box();
-  test::spit(dir / "morris.toml", std::string("[design]\nmethod = \"morris\"\nmembers = 9\nlevels = 4\nseed = 3\n") + kParams);
+  test::spit(dir / "morris.toml", "[design]\nmethod = \"morris\"\nmembers = 9\nlevels = 4\nseed = 3\n" + kParams);
 
   // 1. Morris: 3 trajectories of 3 members.
   const auto r = test::run(ens_cmd(dir, "run", "morris.toml", "-j 2 -o " + (dir / "out").string()));
