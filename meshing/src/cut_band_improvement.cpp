@@ -76,6 +76,8 @@ public:
         r.collapsed += n;
         if (n == 0) break;
       }
+    smooth_slot_.assign(s_.nodes.size(), 0);
+    moved_at_.assign(s_.nodes.size(), 0);
     if (smooth_below_ > 0)
       for (int pass = 0; pass < 6; ++pass) {
         const std::size_t n = smoothing_pass();
@@ -94,9 +96,10 @@ private:
   // dihedral angle relative to min(bound, that of the input tetrahedron it comes from), so that a
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
   // neighbours, and the cut is held to the bound where the input was better.
-  double score(std::uint32_t t, const Tet& e) const {
+  double score(std::uint32_t t, const Tet& e) const { return score_of(t, quality(e)); }
+  double score_of(std::uint32_t t, double q) const {
     const double ref = std::min(s_.bound_deg, s_.parent.quality(s_.tet_parent[t]));
-    return quality(e) / std::max(ref, 1e-9);
+    return q / std::max(ref, 1e-9);
   }
   bool in_band(const Tet& t) const {
     return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
@@ -432,8 +435,9 @@ private:
     std::vector<double> worst(s_.nodes.size(), 180);
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
-      const double q = score(static_cast<std::uint32_t>(t), s_.tets[t]);
-      if (!(q < 1) && !(quality(s_.tets[t]) < smooth_below_)) continue;
+      const double qa = quality(s_.tets[t]);
+      const double q = score_of(static_cast<std::uint32_t>(t), qa);
+      if (!(q < 1) && !(qa < smooth_below_)) continue;
       for (auto v : s_.tets[t])
         if (!node_dead_[v]) {
           want[v] = 1;
@@ -450,9 +454,37 @@ private:
     return moved;
   }
 
+  // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
+  // surfaces stay as computed until v or a node of its tetrahedra or triangles moves.
+  const Surfaces* smoothing_surfaces_of(std::uint32_t v) {
+    auto fresh = [&](const SmoothEntry& c) {
+      for (auto t : tets_of_[v])
+        for (auto w : s_.tets[t])
+          if (moved_at_[w] > c.time) return false;
+      for (auto i : tris_of_[v])
+        for (auto w : s_.tris[i])
+          if (moved_at_[w] > c.time) return false;
+      return true;
+    };
+    if (smooth_slot_[v] == 0) {
+      smooth_cache_.emplace_back();
+      smooth_slot_[v] = static_cast<std::uint32_t>(smooth_cache_.size());
+    } else if (fresh(smooth_cache_[smooth_slot_[v] - 1])) {
+      const auto& c = smooth_cache_[smooth_slot_[v] - 1];
+      return c.ok ? &c.s : nullptr;
+    }
+    auto& c = smooth_cache_[smooth_slot_[v] - 1];
+    c.s.planes.clear();
+    c.s.lines.clear();
+    c.ok = surfaces_of(v, c.s);
+    c.time = moves_;
+    return c.ok ? &c.s : nullptr;
+  }
+
   bool smooth(std::uint32_t v) {
-    Surfaces s;
-    if (!surfaces_of(v, s)) return false;
+    const Surfaces* sp = smoothing_surfaces_of(v);
+    if (!sp) return false;
+    const Surfaces& s = *sp;
     // The directions v may move in: within every plane and along its feature line, if any (exact
     // surfaces to rounding, faults to kParallel).
     std::vector<Point3> normals;
@@ -468,10 +500,13 @@ private:
       else if (norm(cross(line->d, l.d)) > (l.exact || line->exact ? 1e-9 : kParallel)) return false;  // a corner
     }
     Point3 mean{0, 0, 0};
-    std::set<std::uint32_t> nb;
+    auto& nb = nb_scratch_;  // sorted, unique: the mean adds them in increasing order
+    nb.clear();
     for (auto t : tets_of_[v])
       for (auto w : s_.tets[t])
-        if (w != v) nb.insert(w);
+        if (w != v) nb.push_back(w);
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
     for (auto w : nb) mean = add(mean, scaled(X(w), 1.0 / static_cast<double>(nb.size())));
     Point3 d = sub(mean, X(v));
     if (!line) {
@@ -500,7 +535,10 @@ private:
       }
       // Exact surfaces keep the node to rounding, faults within the tolerance.
       for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
-      if (ok && after > before) return true;
+      if (ok && after > before) {
+        moved_at_[v] = ++moves_;
+        return true;
+      }
     }
     s_.nodes[v] = x0;
     return false;
@@ -556,6 +594,16 @@ private:
     std::vector<EdgeFace> at_edge;
   };
   mutable Scratch scratch_;  // surfaces_of's arrays
+  struct SmoothEntry {
+    bool ok = false;
+    Surfaces s;
+    std::uint64_t time = 0;  // moves_ when computed
+  };
+  std::vector<std::uint32_t> smooth_slot_;     // per node: 1 + its entry in smooth_cache_, 0 none
+  std::deque<SmoothEntry> smooth_cache_;
+  std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
+  std::uint64_t moves_ = 0;
+  std::vector<std::uint32_t> nb_scratch_;
   std::vector<std::uint32_t> surf_slot_;                 // per node: 1 + its entry in surf_cache_, 0 none
   std::deque<std::pair<bool, Surfaces>> surf_cache_;     // deque: entries stay put while it grows
   ElementSoup s_;
