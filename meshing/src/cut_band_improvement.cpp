@@ -78,6 +78,8 @@ public:
       }
     smooth_slot_.assign(s_.nodes.size(), 0);
     moved_at_.assign(s_.nodes.size(), 0);
+    tet_q_.assign(s_.tets.size(), 0.0);
+    tet_q_time_.assign(s_.tets.size(), kNever);
     if (smooth_below_ > 0)
       for (int pass = 0; pass < 6; ++pass) {
         const std::size_t n = smoothing_pass();
@@ -435,7 +437,7 @@ private:
     std::vector<double> worst(s_.nodes.size(), 180);
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
-      const double qa = quality(s_.tets[t]);
+      const double qa = smoothing_quality(static_cast<std::uint32_t>(t));
       const double q = score_of(static_cast<std::uint32_t>(t), qa);
       if (!(q < 1) && !(qa < smooth_below_)) continue;
       for (auto v : s_.tets[t])
@@ -481,6 +483,18 @@ private:
     return c.ok ? &c.s : nullptr;
   }
 
+  // A tetrahedron's smallest dihedral angle during the smoothing, kept until one of its nodes
+  // moves (the smoothing changes no incidence).
+  double smoothing_quality(std::uint32_t t) {
+    const auto& e = s_.tets[t];
+    const std::uint64_t at = tet_q_time_[t];
+    if (at != kNever && moved_at_[e[0]] <= at && moved_at_[e[1]] <= at && moved_at_[e[2]] <= at && moved_at_[e[3]] <= at)
+      return tet_q_[t];
+    tet_q_[t] = quality(e);
+    tet_q_time_[t] = moves_;
+    return tet_q_[t];
+  }
+
   bool smooth(std::uint32_t v) {
     const Surfaces* sp = smoothing_surfaces_of(v);
     if (!sp) return false;
@@ -519,24 +533,31 @@ private:
     }
     if (!(norm(d) > 0)) return false;
     double before = std::numeric_limits<double>::infinity();
-    for (auto t : tets_of_[v]) before = std::min(before, score(t, s_.tets[t]));
+    for (auto t : tets_of_[v]) before = std::min(before, score_of(t, smoothing_quality(t)));
     const Point3 x0 = X(v);
+    auto& trial = trial_scratch_;
     for (double step : {1.0, 0.5, 0.25, 0.125}) {
       s_.nodes[v] = add(x0, scaled(d, step));
       bool ok = true;
       double after = std::numeric_limits<double>::infinity();
+      trial.clear();
       for (auto t : tets_of_[v]) {
         const auto& e = s_.tets[t];
         if (!positive(e)) {
           ok = false;
           break;
         }
-        after = std::min(after, score(t, e));
+        trial.push_back(quality(e));
+        after = std::min(after, score_of(t, trial.back()));
       }
       // Exact surfaces keep the node to rounding, faults within the tolerance.
       for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
       if (ok && after > before) {
         moved_at_[v] = ++moves_;
+        for (std::size_t i = 0; i < trial.size(); ++i) {
+          tet_q_[tets_of_[v][i]] = trial[i];
+          tet_q_time_[tets_of_[v][i]] = moves_;
+        }
         return true;
       }
     }
@@ -604,6 +625,10 @@ private:
   std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
   std::uint64_t moves_ = 0;
   std::vector<std::uint32_t> nb_scratch_;
+  static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+  std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
+  std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
+  std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
   std::vector<std::uint32_t> surf_slot_;                 // per node: 1 + its entry in surf_cache_, 0 none
   std::deque<std::pair<bool, Surfaces>> surf_cache_;     // deque: entries stay put while it grows
   ElementSoup s_;
