@@ -70,6 +70,8 @@ public:
     find_band();
     tri_dead_.assign(s_.tris.size(), 0);
     node_dead_.assign(s_.nodes.size(), 0);
+    surf_slot_.assign(s_.nodes.size(), 0);
+    changed_at_.assign(s_.nodes.size(), 0);
     if (ratio_ > 0)
       for (int pass = 0; pass < 10; ++pass) {
         const std::size_t n = collapse_pass();
@@ -253,8 +255,6 @@ private:
     std::sort(cands.begin(), cands.end());
     cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
     build_adjacency(want);
-    surf_slot_.assign(s_.nodes.size(), 0);
-    surf_cache_.clear();
     std::vector<char> touched(s_.nodes.size(), 0);
     std::size_t merged = 0;
     for (const auto& [len, b, a] : cands) {
@@ -262,26 +262,37 @@ private:
       if (!try_collapse(b, a)) continue;
       ++merged;
       // Incidences around b changed: its neighbourhood waits for the next pass. The surfaces of
-      // a's neighbours moved with a: computed again when asked.
+      // b's and a's neighbours changed with them (incidences, a's position): computed again when asked.
+      ++changes_;
       for (auto t : tets_of_[b])
-        for (auto v : s_.tets[t]) touched[v] = 1;
+        for (auto v : s_.tets[t]) {
+          touched[v] = 1;
+          changed_at_[v] = changes_;
+        }
       for (auto t : tets_of_[a])
-        for (auto v : s_.tets[t]) surf_slot_[v] = 0;
+        for (auto v : s_.tets[t]) changed_at_[v] = changes_;
     }
     return merged;
   }
 
-  // surfaces_of once per node and collapse pass (a node is the end of several candidate edges);
-  // nullptr when surfaces_of fails. Cleared for a collapse's neighbourhood when it succeeds.
+  // surfaces_of once per node over the collapse passes (a node is the end of several candidate
+  // edges, and is asked again in later passes); nullptr when surfaces_of fails. Computed again
+  // after a collapse changed the node's tetrahedra or moved one of their nodes: they depend on
+  // nothing else (tets_of_ lists are sorted, so a rebuilt list of the same tetrahedra is the same).
   const Surfaces* cached_surfaces_of(std::uint32_t v) {
     if (surf_slot_[v] == 0) {
-      Surfaces s;
-      const bool ok = surfaces_of(v, s);
-      surf_cache_.push_back({ok, std::move(s)});
+      surf_cache_.emplace_back();
       surf_slot_[v] = static_cast<std::uint32_t>(surf_cache_.size());
+    } else if (changed_at_[v] <= surf_cache_[surf_slot_[v] - 1].time) {
+      const auto& c = surf_cache_[surf_slot_[v] - 1];
+      return c.ok ? &c.s : nullptr;
     }
-    const auto& c = surf_cache_[surf_slot_[v] - 1];
-    return c.first ? &c.second : nullptr;
+    auto& c = surf_cache_[surf_slot_[v] - 1];
+    c.s.planes.clear();
+    c.s.lines.clear();
+    c.ok = surfaces_of(v, c.s);
+    c.time = changes_;
+    return c.ok ? &c.s : nullptr;
   }
 
   bool lies_on(const Surfaces& s, std::uint32_t from, std::uint32_t a) const {
@@ -459,7 +470,7 @@ private:
   // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
   // surfaces stay as computed until v or a node of its tetrahedra or triangles moves.
   const Surfaces* smoothing_surfaces_of(std::uint32_t v) {
-    auto fresh = [&](const SmoothEntry& c) {
+    auto fresh = [&](const SurfEntry& c) {
       for (auto t : tets_of_[v])
         for (auto w : s_.tets[t])
           if (moved_at_[w] > c.time) return false;
@@ -615,13 +626,13 @@ private:
     std::vector<EdgeFace> at_edge;
   };
   mutable Scratch scratch_;  // surfaces_of's arrays
-  struct SmoothEntry {
+  struct SurfEntry {
     bool ok = false;
     Surfaces s;
-    std::uint64_t time = 0;  // moves_ when computed
+    std::uint64_t time = 0;  // changes_ (collapse) or moves_ (smoothing) when computed
   };
   std::vector<std::uint32_t> smooth_slot_;     // per node: 1 + its entry in smooth_cache_, 0 none
-  std::deque<SmoothEntry> smooth_cache_;
+  std::deque<SurfEntry> smooth_cache_;
   std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
   std::uint64_t moves_ = 0;
   std::vector<std::uint32_t> nb_scratch_;
@@ -629,8 +640,10 @@ private:
   std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
   std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
   std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
-  std::vector<std::uint32_t> surf_slot_;                 // per node: 1 + its entry in surf_cache_, 0 none
-  std::deque<std::pair<bool, Surfaces>> surf_cache_;     // deque: entries stay put while it grows
+  std::vector<std::uint32_t> surf_slot_;   // per node: 1 + its entry in surf_cache_, 0 none
+  std::deque<SurfEntry> surf_cache_;       // deque: entries stay put while it grows
+  std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
+  std::uint64_t changes_ = 0;              // successful collapses so far
   ElementSoup s_;
   std::size_t first_new_;
   double ratio_, smooth_below_, tol_;
