@@ -731,8 +731,17 @@ private:
     std::vector<std::uint32_t> out;
     for (std::size_t v = 0; v < want.size() && v < at.size(); ++v)
       if (want[v]) out.insert(out.end(), at[v].begin(), at[v].end());
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (out.size() < (std::size_t{1} << 15)) {
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+      return out;
+    }
+    // Many (a coarse mesh's panel): a flag per element and one sweep instead of the sort.
+    std::vector<char> hit(*std::max_element(out.begin(), out.end()) + std::size_t{1}, 0);
+    for (auto i : out) hit[i] = 1;
+    out.clear();
+    for (std::size_t i = 0; i < hit.size(); ++i)
+      if (hit[i]) out.push_back(static_cast<std::uint32_t>(i));
     return out;
   }
 
