@@ -745,11 +745,15 @@ private:
     return out;
   }
 
-  // reach_ of a tetrahedron's nodes: at least its diameter.
+  // reach_ of a tetrahedron's nodes: at least its diameter (one square root per tetrahedron).
   void raise_reach(const std::array<std::uint32_t, 4>& t) {
-    double d = 0;
+    double d2 = 0;
     for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) d = std::max(d, norm(sub(X_[t[i]], X_[t[j]])));
+      for (int j = i + 1; j < 4; ++j) {
+        const Point3 e = sub(X_[t[i]], X_[t[j]]);
+        d2 = std::max(d2, dot(e, e));
+      }
+    const double d = std::sqrt(d2);
     for (auto v : t) reach_[v] = std::max(reach_[v], d);
   }
 
