@@ -549,21 +549,23 @@ private:
     auto& trial = trial_scratch_;
     for (double step : {1.0, 0.5, 0.25, 0.125}) {
       s_.nodes[v] = add(x0, scaled(d, step));
+      // Exact surfaces keep the node to rounding, faults within the tolerance.
       bool ok = true;
-      double after = std::numeric_limits<double>::infinity();
+      for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
+      // The step is taken when every tetrahedron stays positive and scores above `before`: the
+      // first that does not ends the trial (the rest cannot change the answer).
       trial.clear();
-      for (auto t : tets_of_[v]) {
+      for (std::size_t i = 0; ok && i < tets_of_[v].size(); ++i) {
+        const auto t = tets_of_[v][i];
         const auto& e = s_.tets[t];
         if (!positive(e)) {
           ok = false;
           break;
         }
         trial.push_back(quality(e));
-        after = std::min(after, score_of(t, trial.back()));
+        ok = !(score_of(t, trial.back()) <= before);  // as min(after, NaN) kept `after`
       }
-      // Exact surfaces keep the node to rounding, faults within the tolerance.
-      for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
-      if (ok && after > before) {
+      if (ok) {
         moved_at_[v] = ++moves_;
         for (std::size_t i = 0; i < trial.size(); ++i) {
           tet_q_[tets_of_[v][i]] = trial[i];
