@@ -70,12 +70,18 @@ public:
     find_band();
     tri_dead_.assign(s_.tris.size(), 0);
     node_dead_.assign(s_.nodes.size(), 0);
+    surf_slot_.assign(s_.nodes.size(), 0);
+    changed_at_.assign(s_.nodes.size(), 0);
     if (ratio_ > 0)
       for (int pass = 0; pass < 10; ++pass) {
         const std::size_t n = collapse_pass();
         r.collapsed += n;
         if (n == 0) break;
       }
+    smooth_slot_.assign(s_.nodes.size(), 0);
+    moved_at_.assign(s_.nodes.size(), 0);
+    tet_q_.assign(s_.tets.size(), 0.0);
+    tet_q_time_.assign(s_.tets.size(), kNever);
     if (smooth_below_ > 0)
       for (int pass = 0; pass < 6; ++pass) {
         const std::size_t n = smoothing_pass();
@@ -94,9 +100,10 @@ private:
   // dihedral angle relative to min(bound, that of the input tetrahedron it comes from), so that a
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
   // neighbours, and the cut is held to the bound where the input was better.
-  double score(std::uint32_t t, const Tet& e) const {
+  double score(std::uint32_t t, const Tet& e) const { return score_of(t, quality(e)); }
+  double score_of(std::uint32_t t, double q) const {
     const double ref = std::min(s_.bound_deg, s_.parent.quality(s_.tet_parent[t]));
-    return quality(e) / std::max(ref, 1e-9);
+    return q / std::max(ref, 1e-9);
   }
   bool in_band(const Tet& t) const {
     return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
@@ -248,8 +255,6 @@ private:
     std::sort(cands.begin(), cands.end());
     cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
     build_adjacency(want);
-    surf_slot_.assign(s_.nodes.size(), 0);
-    surf_cache_.clear();
     std::vector<char> touched(s_.nodes.size(), 0);
     std::size_t merged = 0;
     for (const auto& [len, b, a] : cands) {
@@ -257,26 +262,37 @@ private:
       if (!try_collapse(b, a)) continue;
       ++merged;
       // Incidences around b changed: its neighbourhood waits for the next pass. The surfaces of
-      // a's neighbours moved with a: computed again when asked.
+      // b's and a's neighbours changed with them (incidences, a's position): computed again when asked.
+      ++changes_;
       for (auto t : tets_of_[b])
-        for (auto v : s_.tets[t]) touched[v] = 1;
+        for (auto v : s_.tets[t]) {
+          touched[v] = 1;
+          changed_at_[v] = changes_;
+        }
       for (auto t : tets_of_[a])
-        for (auto v : s_.tets[t]) surf_slot_[v] = 0;
+        for (auto v : s_.tets[t]) changed_at_[v] = changes_;
     }
     return merged;
   }
 
-  // surfaces_of once per node and collapse pass (a node is the end of several candidate edges);
-  // nullptr when surfaces_of fails. Cleared for a collapse's neighbourhood when it succeeds.
+  // surfaces_of once per node over the collapse passes (a node is the end of several candidate
+  // edges, and is asked again in later passes); nullptr when surfaces_of fails. Computed again
+  // after a collapse changed the node's tetrahedra or moved one of their nodes: they depend on
+  // nothing else (tets_of_ lists are sorted, so a rebuilt list of the same tetrahedra is the same).
   const Surfaces* cached_surfaces_of(std::uint32_t v) {
     if (surf_slot_[v] == 0) {
-      Surfaces s;
-      const bool ok = surfaces_of(v, s);
-      surf_cache_.push_back({ok, std::move(s)});
+      surf_cache_.emplace_back();
       surf_slot_[v] = static_cast<std::uint32_t>(surf_cache_.size());
+    } else if (changed_at_[v] <= surf_cache_[surf_slot_[v] - 1].time) {
+      const auto& c = surf_cache_[surf_slot_[v] - 1];
+      return c.ok ? &c.s : nullptr;
     }
-    const auto& c = surf_cache_[surf_slot_[v] - 1];
-    return c.first ? &c.second : nullptr;
+    auto& c = surf_cache_[surf_slot_[v] - 1];
+    c.s.planes.clear();
+    c.s.lines.clear();
+    c.ok = surfaces_of(v, c.s);
+    c.time = changes_;
+    return c.ok ? &c.s : nullptr;
   }
 
   bool lies_on(const Surfaces& s, std::uint32_t from, std::uint32_t a) const {
@@ -432,8 +448,9 @@ private:
     std::vector<double> worst(s_.nodes.size(), 180);
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
-      const double q = score(static_cast<std::uint32_t>(t), s_.tets[t]);
-      if (!(q < 1) && !(quality(s_.tets[t]) < smooth_below_)) continue;
+      const double qa = smoothing_quality(static_cast<std::uint32_t>(t));
+      const double q = score_of(static_cast<std::uint32_t>(t), qa);
+      if (!(q < 1) && !(qa < smooth_below_)) continue;
       for (auto v : s_.tets[t])
         if (!node_dead_[v]) {
           want[v] = 1;
@@ -450,9 +467,49 @@ private:
     return moved;
   }
 
+  // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
+  // surfaces stay as computed until v or a node of its tetrahedra or triangles moves.
+  const Surfaces* smoothing_surfaces_of(std::uint32_t v) {
+    auto fresh = [&](const SurfEntry& c) {
+      for (auto t : tets_of_[v])
+        for (auto w : s_.tets[t])
+          if (moved_at_[w] > c.time) return false;
+      for (auto i : tris_of_[v])
+        for (auto w : s_.tris[i])
+          if (moved_at_[w] > c.time) return false;
+      return true;
+    };
+    if (smooth_slot_[v] == 0) {
+      smooth_cache_.emplace_back();
+      smooth_slot_[v] = static_cast<std::uint32_t>(smooth_cache_.size());
+    } else if (fresh(smooth_cache_[smooth_slot_[v] - 1])) {
+      const auto& c = smooth_cache_[smooth_slot_[v] - 1];
+      return c.ok ? &c.s : nullptr;
+    }
+    auto& c = smooth_cache_[smooth_slot_[v] - 1];
+    c.s.planes.clear();
+    c.s.lines.clear();
+    c.ok = surfaces_of(v, c.s);
+    c.time = moves_;
+    return c.ok ? &c.s : nullptr;
+  }
+
+  // A tetrahedron's smallest dihedral angle during the smoothing, kept until one of its nodes
+  // moves (the smoothing changes no incidence).
+  double smoothing_quality(std::uint32_t t) {
+    const auto& e = s_.tets[t];
+    const std::uint64_t at = tet_q_time_[t];
+    if (at != kNever && moved_at_[e[0]] <= at && moved_at_[e[1]] <= at && moved_at_[e[2]] <= at && moved_at_[e[3]] <= at)
+      return tet_q_[t];
+    tet_q_[t] = quality(e);
+    tet_q_time_[t] = moves_;
+    return tet_q_[t];
+  }
+
   bool smooth(std::uint32_t v) {
-    Surfaces s;
-    if (!surfaces_of(v, s)) return false;
+    const Surfaces* sp = smoothing_surfaces_of(v);
+    if (!sp) return false;
+    const Surfaces& s = *sp;
     // The directions v may move in: within every plane and along its feature line, if any (exact
     // surfaces to rounding, faults to kParallel).
     std::vector<Point3> normals;
@@ -468,10 +525,13 @@ private:
       else if (norm(cross(line->d, l.d)) > (l.exact || line->exact ? 1e-9 : kParallel)) return false;  // a corner
     }
     Point3 mean{0, 0, 0};
-    std::set<std::uint32_t> nb;
+    auto& nb = nb_scratch_;  // sorted, unique: the mean adds them in increasing order
+    nb.clear();
     for (auto t : tets_of_[v])
       for (auto w : s_.tets[t])
-        if (w != v) nb.insert(w);
+        if (w != v) nb.push_back(w);
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
     for (auto w : nb) mean = add(mean, scaled(X(w), 1.0 / static_cast<double>(nb.size())));
     Point3 d = sub(mean, X(v));
     if (!line) {
@@ -484,23 +544,35 @@ private:
     }
     if (!(norm(d) > 0)) return false;
     double before = std::numeric_limits<double>::infinity();
-    for (auto t : tets_of_[v]) before = std::min(before, score(t, s_.tets[t]));
+    for (auto t : tets_of_[v]) before = std::min(before, score_of(t, smoothing_quality(t)));
     const Point3 x0 = X(v);
+    auto& trial = trial_scratch_;
     for (double step : {1.0, 0.5, 0.25, 0.125}) {
       s_.nodes[v] = add(x0, scaled(d, step));
+      // Exact surfaces keep the node to rounding, faults within the tolerance.
       bool ok = true;
-      double after = std::numeric_limits<double>::infinity();
-      for (auto t : tets_of_[v]) {
+      for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
+      // The step is taken when every tetrahedron stays positive and scores above `before`: the
+      // first that does not ends the trial (the rest cannot change the answer).
+      trial.clear();
+      for (std::size_t i = 0; ok && i < tets_of_[v].size(); ++i) {
+        const auto t = tets_of_[v][i];
         const auto& e = s_.tets[t];
         if (!positive(e)) {
           ok = false;
           break;
         }
-        after = std::min(after, score(t, e));
+        trial.push_back(quality(e));
+        ok = !(score_of(t, trial.back()) <= before);  // as min(after, NaN) kept `after`
       }
-      // Exact surfaces keep the node to rounding, faults within the tolerance.
-      for (const auto& pl : s.planes) ok = ok && std::abs(dot(pl.n, sub(X(v), pl.p))) <= (pl.exact ? round_ : tol_);
-      if (ok && after > before) return true;
+      if (ok) {
+        moved_at_[v] = ++moves_;
+        for (std::size_t i = 0; i < trial.size(); ++i) {
+          tet_q_[tets_of_[v][i]] = trial[i];
+          tet_q_time_[tets_of_[v][i]] = moves_;
+        }
+        return true;
+      }
     }
     s_.nodes[v] = x0;
     return false;
@@ -556,8 +628,24 @@ private:
     std::vector<EdgeFace> at_edge;
   };
   mutable Scratch scratch_;  // surfaces_of's arrays
-  std::vector<std::uint32_t> surf_slot_;                 // per node: 1 + its entry in surf_cache_, 0 none
-  std::deque<std::pair<bool, Surfaces>> surf_cache_;     // deque: entries stay put while it grows
+  struct SurfEntry {
+    bool ok = false;
+    Surfaces s;
+    std::uint64_t time = 0;  // changes_ (collapse) or moves_ (smoothing) when computed
+  };
+  std::vector<std::uint32_t> smooth_slot_;     // per node: 1 + its entry in smooth_cache_, 0 none
+  std::deque<SurfEntry> smooth_cache_;
+  std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
+  std::uint64_t moves_ = 0;
+  std::vector<std::uint32_t> nb_scratch_;
+  static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+  std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
+  std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
+  std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
+  std::vector<std::uint32_t> surf_slot_;   // per node: 1 + its entry in surf_cache_, 0 none
+  std::deque<SurfEntry> surf_cache_;       // deque: entries stay put while it grows
+  std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
+  std::uint64_t changes_ = 0;              // successful collapses so far
   ElementSoup s_;
   std::size_t first_new_;
   double ratio_, smooth_below_, tol_;

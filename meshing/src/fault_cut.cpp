@@ -224,7 +224,11 @@ public:
         }
     }
     parent_.emplace(X_, T_);
-    for (std::size_t i = 0; i < T_.size(); ++i) link(tets_at_, T_[i], static_cast<std::uint32_t>(i));
+    reach_.assign(X_.size(), 0.0);
+    for (std::size_t i = 0; i < T_.size(); ++i) {
+      link(tets_at_, T_[i], static_cast<std::uint32_t>(i));
+      raise_reach(T_[i]);
+    }
     for (std::size_t i = 0; i < F_.size(); ++i) link(tris_at_, F_[i], static_cast<std::uint32_t>(i));
   }
 
@@ -346,6 +350,7 @@ public:
         if (vol1 > 0 && a1 >= 0.5 * a0) {
           ++snapped_;
           moved = true;
+          for (auto t : tets_of[c]) raise_reach(T_[t]);
         } else {
           X_[v] = old;
         }
@@ -362,13 +367,28 @@ public:
   void fix_plane(const CutPanel& p) { done_.push_back(&p); }
 
   // The edges crossing P of the tetrahedra whose section by P meets Q.
+  // Such a tetrahedron of diameter D has an end of a crossing edge within |n| D / 2 of P and,
+  // for each bound, a node within tol + |m| D of its inside: that end is such a node, and D is at
+  // most the reach of each of its nodes. So only the tetrahedra around nodes passing that test
+  // (with a margin for rounding) are examined, in increasing order as a scan of all would meet them.
   std::vector<std::array<std::uint32_t, 2>> plane_edges(const CutPanel& p) const {
     std::vector<double> g(X_.size());
-    for (std::size_t i = 0; i < X_.size(); ++i) g[i] = dot(p.n, X_[i]) - p.c;
+    std::vector<char> near(X_.size(), 0);
+    const double nn = norm(p.n);
+    std::vector<double> mm;
+    for (const auto& b : p.bounds) mm.push_back(norm(b.m));
+    for (std::size_t i = 0; i < X_.size(); ++i) {
+      g[i] = dot(p.n, X_[i]) - p.c;
+      const double r = 1.001 * reach_[i] + 2 * tol_;
+      bool in = std::abs(g[i]) <= nn * r;
+      for (std::size_t k = 0; in && k < p.bounds.size(); ++k) in = dot(p.bounds[k].m, X_[i]) - p.bounds[k].d <= tol_ + mm[k] * r;
+      near[i] = in;
+    }
     std::vector<std::array<std::uint32_t, 2>> out;
     std::unordered_set<std::uint64_t> seen;
     std::vector<Point3> section;
-    for (const auto& t : T_) {
+    for (auto ti : elements_at(tets_at_, near)) {
+      const auto& t = T_[ti];
       double lo = g[t[0]], hi = lo;
       for (int k = 1; k < 4; ++k) {
         lo = std::min(lo, g[t[k]]);
@@ -711,13 +731,37 @@ private:
     std::vector<std::uint32_t> out;
     for (std::size_t v = 0; v < want.size() && v < at.size(); ++v)
       if (want[v]) out.insert(out.end(), at[v].begin(), at[v].end());
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (out.size() < (std::size_t{1} << 15)) {
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+      return out;
+    }
+    // Many (a coarse mesh's panel): a flag per element and one sweep instead of the sort.
+    std::vector<char> hit(*std::max_element(out.begin(), out.end()) + std::size_t{1}, 0);
+    for (auto i : out) hit[i] = 1;
+    out.clear();
+    for (std::size_t i = 0; i < hit.size(); ++i)
+      if (hit[i]) out.push_back(static_cast<std::uint32_t>(i));
     return out;
+  }
+
+  // reach_ of a tetrahedron's nodes: at least its diameter (one square root per tetrahedron).
+  void raise_reach(const std::array<std::uint32_t, 4>& t) {
+    double d2 = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const Point3 e = sub(X_[t[i]], X_[t[j]]);
+        d2 = std::max(d2, dot(e, e));
+      }
+    const double d = std::sqrt(d2);
+    for (auto v : t) reach_[v] = std::max(reach_[v], d);
   }
 
   void apply(const EdgeMap& marked) {
     if (marked.empty()) return;
+    // A new node's tetrahedra lie inside those of the edge it splits: the edge's ends' reach holds.
+    reach_.resize(X_.size(), 0.0);
+    for (const auto& [k, m] : marked) reach_[m] = std::max(reach_[k >> 32], reach_[k & 0xffffffffu]);
     std::vector<char> flag(X_.size(), 0);
     for (const auto& [k, m] : marked) {
       flag[k >> 32] = 1;
@@ -778,6 +822,7 @@ private:
   std::vector<std::array<std::uint32_t, 3>> F_;
   std::vector<std::uint32_t> Fb_;
   Incidence tets_at_, tris_at_;        // per node: the tetrahedra / triangles holding it
+  std::vector<double> reach_;          // per node: at least the diameter of each tetrahedron holding it
   std::vector<const CutPanel*> done_;  // the panels cut so far
   std::size_t snapped_ = 0;
 };
