@@ -259,6 +259,21 @@ struct FieldSeriesWriter::Impl {
     steps.push_back(std::move(step));
   }
 
+  void add_cell_field(const Field& f) {
+    if (committed) throw std::logic_error("field series: add_cell_field after commit");
+    if (steps.empty()) throw std::logic_error("field series: add_cell_field before add_step");
+    check_fields(std::span<const Field>(&f, 1), num_cells, "cell");
+    Step& step = steps.back();
+    for (const FieldInfo& i : step.cell)
+      if (i.name == f.name) throw std::invalid_argument(fmt::format("field series: cell field {} given twice", f.name));
+    const std::string path = step.group + "/cell";
+    h5::Id sub(H5Gopen2(steps_group.get(), path.c_str(), H5P_DEFAULT), H5Gclose);
+    check(sub.valid(), fmt::format("cannot open group '{}'", path));
+    dataset(sub.get(), f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.values.data(), f.count(),
+            f.components == 1 ? 0 : f.components);
+    step.cell.push_back({f.name, f.components});
+  }
+
   std::string data_item(std::string_view dims, std::string_view number_type, int precision, std::string_view h5path) const {
     return fmt::format("<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" Format=\"HDF\">{}:{}</DataItem>",
                        dims, number_type, precision, xml_escape(h5_name), xml_escape(h5path));
@@ -364,6 +379,11 @@ void FieldSeriesWriter::add_step(const std::string& date_iso, double time_second
                                  std::span<const Field> cell_fields) {
   h5::QuietErrors quiet;
   impl_->add_step(date_iso, time_seconds, node_fields, cell_fields);
+}
+
+void FieldSeriesWriter::add_cell_field(const Field& field) {
+  h5::QuietErrors quiet;
+  impl_->add_cell_field(field);
 }
 
 void FieldSeriesWriter::commit() {

@@ -226,6 +226,36 @@ TEST(UGS_FIELDS_SUITE, SameInputSameBytes) {
   fs::remove_all(dir);
 }
 
+// ugs-solve writes an output date's cell fields one at a time: the same file, byte for byte, as
+// all of them given to add_step.
+TEST(UGS_FIELDS_SUITE, CellFieldsAddedOneAtATimeGiveTheSameBytes) {
+  const auto dir = test::temp_dir("fields-append");
+  const Mesh m = test::faulted_cube_mesh();
+  write_series(dir / "a.h5", m);
+  {
+    FieldSeriesWriter w((dir / "b.h5").string(), m);
+    EXPECT_THROW(w.add_cell_field(test::sample_field("chi", 1, w.cell_count(), 0, 0.1)), std::logic_error);
+    for (int k = 0; k < 3; ++k) {
+      const std::vector<Field> node = {test::sample_field("dp", 1, m.num_nodes(), k, 0.25),
+                                       test::sample_field("u", 3, m.num_nodes(), k, -7.0)};
+      w.add_step(kDates[k], kTimes[k], node);
+      w.add_cell_field(test::sample_field("stress", 6, w.cell_count(), k, 11.0));
+      EXPECT_THROW(w.add_cell_field(test::sample_field("stress", 6, w.cell_count(), k, 11.0)), std::invalid_argument);
+      EXPECT_THROW(w.add_cell_field(test::sample_field("short", 1, w.cell_count() - 1, k, 0.1)), std::invalid_argument);
+      w.add_cell_field(test::sample_field("chi", 1, w.cell_count(), k, 0.1));
+    }
+    w.commit();
+    EXPECT_THROW(w.add_cell_field(test::sample_field("late", 1, w.cell_count(), 0, 0.1)), std::logic_error);
+  }
+  EXPECT_EQ(test::slurp(dir / "a.h5"), test::slurp(dir / "b.h5"));
+  std::string xa = test::slurp(dir / "a.xdmf"), xb = test::slurp(dir / "b.xdmf");
+  for (auto* x : {&xa, &xb}) x->erase(0, x->find("<Grid"));  // they differ only in the file name
+  for (std::size_t at = xa.find("a.h5:"); at != std::string::npos; at = xa.find("a.h5:", at)) xa.replace(at, 1, "b");
+  xa.replace(xa.find("Name=\"a\""), 8, "Name=\"b\"");
+  EXPECT_EQ(xa, xb);
+  fs::remove_all(dir);
+}
+
 TEST(UGS_FIELDS_SUITE, WithoutCommitNothingIsLeft) {
   const auto dir = test::temp_dir("fields-abort");
   const Mesh m = test::faulted_cube_mesh();

@@ -23,6 +23,7 @@ OutputSet::OutputSet(const RunSettings& o, const Mesh& mesh, const mech::Model& 
     : mesh_(mesh), model_(model) {
   fields_.insert(cs.output_fields.begin(), cs.output_fields.end());
   if (fields_.empty()) fields_ = {"displacement", "strain", "stress", "stress_change", "cm", "state"};
+  cell_fields_ = mech::volume_cell_fields(fields_);
   FieldSeriesOptions vol;
   if (fm) vol.cell_types = {ElementType::Tetrahedron};
   results_ = std::make_unique<FieldSeriesWriter>(o.output, mesh, vol);
@@ -46,9 +47,13 @@ OutputSet::OutputSet(const RunSettings& o, const Mesh& mesh, const mech::Model& 
 }
 
 void OutputSet::write_step(const std::string& date, double time, const std::vector<double>& u, bool output,
-                           mech::CellResults& cells, mech::PressureHistory& history) {
+                           mech::PressureHistory& history) {
   mech::write_top_surface(top_.get(), top_csv_.get(), mesh_, model_, date, time, u);
-  if (output) mech::write_volume_fields(*results_, fields_, history, date, time, u, cells);
+  if (output) mech::write_volume_step(*results_, fields_, history, date, time, u);
+}
+
+void OutputSet::add_cell_field(mech::CellField field, std::vector<double> values) {
+  mech::write_cell_field(*results_, field, std::move(values));
 }
 
 void OutputSet::commit() {

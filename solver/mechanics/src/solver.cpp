@@ -77,56 +77,72 @@ std::vector<double> MechanicsSolver::gather_displacement() {
 }
 
 CellResults MechanicsSolver::gather_cells() {
+  CellResults out;
+  out.strain = gather_cell_field(CellField::Strain);
+  out.stress = gather_cell_field(CellField::Stress);
+  out.stress_change = gather_cell_field(CellField::StressChange);
+  out.cm = gather_cell_field(CellField::Cm);
+  out.state = gather_cell_field(CellField::State);
+  out.sigma_max = gather_cell_field(CellField::SigmaMax);
+  return out;
+}
+
+std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
   PetscLogEventBegin(events().gather, 0, 0, 0, 0);
   Impl& s = *impl_;
   const LocalMesh& lm = s.lm;
-  UGS_PETSC(VecGhostUpdateBegin(s.u, INSERT_VALUES, SCATTER_FORWARD));
-  UGS_PETSC(VecGhostUpdateEnd(s.u, INSERT_VALUES, SCATTER_FORWARD));
-  Vec ul;
-  const PetscScalar* ua = nullptr;
-  UGS_PETSC(VecGhostGetLocalForm(s.u, &ul));
-  UGS_PETSC(VecGetArrayRead(ul, &ua));
-  std::vector<double> strain, stress, dstress, cm, state, smax;
+  const bool tensor = field == CellField::Strain || field == CellField::Stress || field == CellField::StressChange;
+  const int k = tensor ? 6 : 1;
   const auto owned = static_cast<std::size_t>(
       std::count_if(lm.cell_owned.begin(), lm.cell_owned.end(), [](std::uint8_t o) { return o != 0; }));
-  for (auto* v : {&strain, &stress, &dstress}) v->reserve(6 * owned);
-  for (auto* v : {&cm, &state, &smax}) v->reserve(owned);
+  std::vector<double> values;
+  values.reserve(k * owned);
+  Vec ul = nullptr;
+  const PetscScalar* ua = nullptr;
+  if (tensor) {
+    UGS_PETSC(VecGhostUpdateBegin(s.u, INSERT_VALUES, SCATTER_FORWARD));
+    UGS_PETSC(VecGhostUpdateEnd(s.u, INSERT_VALUES, SCATTER_FORWARD));
+    UGS_PETSC(VecGhostGetLocalForm(s.u, &ul));
+    UGS_PETSC(VecGetArrayRead(ul, &ua));
+  }
   for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
     if (!lm.cell_owned[ci]) continue;
     const int c = static_cast<int>(ci);
     const fem::Material& m = lm.materials[lm.cell_material[c]];
-    double ue[12];
-    s.gather_element(ua, c, ue);
-    const Vec6 eps = fem::tet4_strain(s.geo[c], ue);
     const int h = s.hyp.of_cell[c];
-    const Vec6 ds = h < 0 ? s.elastic_stress(c, eps) : s.hyp.committed[h].dsig;
-    const auto& t = lm.cells[c];
-    const double zc = 0.25 * (lm.x[t[0]][2] + lm.x[t[1]][2] + lm.x[t[2]][2] + lm.x[t[3]][2]);
-    const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]]);
-    Vec6 tot;
-    for (int k = 0; k < 6; ++k) tot[k] = s0[k] + ds[k];
-    for (double v : fem::strain_to_output(eps)) strain.push_back(v);
-    for (double v : fem::stress_to_output(tot)) stress.push_back(v);
-    for (double v : fem::stress_to_output(ds)) dstress.push_back(v);
-    if (h >= 0) {
-      cm.push_back(s.hyp.committed_c[h] * 1e-6);
-      state.push_back(static_cast<double>(static_cast<int>(s.hyp.committed_phase[h])));
-      smax.push_back(s.hyp.committed[h].hypo.sigma_max * 1e6);
+    if (tensor) {
+      double ue[12];
+      s.gather_element(ua, c, ue);
+      const Vec6 eps = fem::tet4_strain(s.geo[c], ue);
+      if (field == CellField::Strain) {
+        for (double v : fem::strain_to_output(eps)) values.push_back(v);
+        continue;
+      }
+      const Vec6 ds = h < 0 ? s.elastic_stress(c, eps) : s.hyp.committed[h].dsig;
+      if (field == CellField::StressChange) {
+        for (double v : fem::stress_to_output(ds)) values.push_back(v);
+        continue;
+      }
+      const auto& t = lm.cells[c];
+      const double zc = 0.25 * (lm.x[t[0]][2] + lm.x[t[1]][2] + lm.x[t[2]][2] + lm.x[t[3]][2]);
+      const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]]);
+      Vec6 tot;
+      for (int j = 0; j < 6; ++j) tot[j] = s0[j] + ds[j];
+      for (double v : fem::stress_to_output(tot)) values.push_back(v);
+    } else if (field == CellField::Cm) {
+      values.push_back(h >= 0 ? s.hyp.committed_c[h] * 1e-6
+                              : (m.law == fem::Law::Linear ? fem::cm_from_ez(m.E_z, m.ratios) : 1.0 / s.inv_c0[c]));
+    } else if (field == CellField::State) {
+      values.push_back(h >= 0 ? static_cast<double>(static_cast<int>(s.hyp.committed_phase[h])) : 0.0);
     } else {
-      cm.push_back(m.law == fem::Law::Linear ? fem::cm_from_ez(m.E_z, m.ratios) : 1.0 / s.inv_c0[c]);
-      state.push_back(0.0);
-      smax.push_back(0.0);
+      values.push_back(h >= 0 ? s.hyp.committed[h].hypo.sigma_max * 1e6 : 0.0);
     }
   }
-  UGS_PETSC(VecRestoreArrayRead(ul, &ua));
-  UGS_PETSC(VecGhostRestoreLocalForm(s.u, &ul));
-  CellResults out;
-  out.strain = s.gather_cells_k(strain, 6);
-  out.stress = s.gather_cells_k(stress, 6);
-  out.stress_change = s.gather_cells_k(dstress, 6);
-  out.cm = s.gather_cells_k(cm, 1);
-  out.state = s.gather_cells_k(state, 1);
-  out.sigma_max = s.gather_cells_k(smax, 1);
+  if (tensor) {
+    UGS_PETSC(VecRestoreArrayRead(ul, &ua));
+    UGS_PETSC(VecGhostRestoreLocalForm(s.u, &ul));
+  }
+  std::vector<double> out = s.gather_cells_k(values, k);
   PetscLogEventEnd(events().gather, 0, 0, 0, 0);
   return out;
 }

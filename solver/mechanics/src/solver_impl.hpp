@@ -369,18 +369,27 @@ struct MechanicsSolver::Impl {
     return out;
   }
 
-  // Owned-cell values (k per cell) to output order on rank 0.
+  // Owned-cell values (k per cell) to output order on rank 0. Rank by rank into place, so that
+  // rank 0 holds the result and one other rank's part, not a second whole copy.
   std::vector<double> gather_cells_k(const std::vector<double>& owned, int k) const {
-    const auto all = gatherv(owned);
-    std::vector<double> out;
-    if (lm.rank == 0) {
-      out.resize(static_cast<std::size_t>(lm.n_global_cells) * k);
+    constexpr int kTag = 7301;
+    if (lm.rank != 0) {
+      MPI_Send(owned.data(), static_cast<int>(owned.size()), MPI_DOUBLE, 0, kTag, lm.comm);
+      return {};
+    }
+    std::vector<double> out(static_cast<std::size_t>(lm.n_global_cells) * k);
+    auto place = [&](const std::vector<double>& part, int p) {
       std::size_t pos = 0;
-      for (int p = 0; p < lm.size; ++p)
-        for (auto e : lm.owned_cells_of_rank[p]) {
-          for (int c = 0; c < k; ++c) out[static_cast<std::size_t>(e) * k + c] = all[pos + c];
-          pos += k;
-        }
+      for (auto e : lm.owned_cells_of_rank[p]) {
+        for (int c = 0; c < k; ++c) out[static_cast<std::size_t>(e) * k + c] = part[pos + c];
+        pos += k;
+      }
+    };
+    place(owned, 0);
+    for (int p = 1; p < lm.size; ++p) {
+      std::vector<double> part(lm.owned_cells_of_rank[p].size() * k);
+      MPI_Recv(part.data(), static_cast<int>(part.size()), MPI_DOUBLE, p, kTag, lm.comm, MPI_STATUS_IGNORE);
+      place(part, p);
     }
     return out;
   }

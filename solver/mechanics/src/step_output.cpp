@@ -23,20 +23,36 @@ void write_top_surface(FieldSeriesWriter* top, CsvWriter* top_csv, const Mesh& m
     }
 }
 
-void write_volume_fields(FieldSeriesWriter& results, const std::set<std::string>& fields, PressureHistory& history,
-                         const std::string& date, double time, const std::vector<double>& u, CellResults& cells) {
-  std::vector<Field> nf, cf;
+void write_volume_step(FieldSeriesWriter& results, const std::set<std::string>& fields, PressureHistory& history,
+                       const std::string& date, double time, const std::vector<double>& u) {
+  std::vector<Field> nf;
   if (fields.count("displacement")) nf.push_back({"u", 3, u});
   if (fields.count("pressure")) nf.push_back({"dp", 1, history.node_dp(time)});
-  if (fields.count("strain")) cf.push_back({"strain", 6, std::move(cells.strain)});
-  if (fields.count("stress")) cf.push_back({"stress", 6, std::move(cells.stress)});
-  if (fields.count("stress_change")) cf.push_back({"stress_change", 6, std::move(cells.stress_change)});
-  if (fields.count("cm")) cf.push_back({"cM", 1, std::move(cells.cm)});
+  results.add_step(date, time, nf);
+}
+
+std::vector<CellField> volume_cell_fields(const std::set<std::string>& fields) {
+  std::vector<CellField> out;
+  if (fields.count("strain")) out.push_back(CellField::Strain);
+  if (fields.count("stress")) out.push_back(CellField::Stress);
+  if (fields.count("stress_change")) out.push_back(CellField::StressChange);
+  if (fields.count("cm")) out.push_back(CellField::Cm);
   if (fields.count("state")) {
-    cf.push_back({"state", 1, std::move(cells.state)});
-    cf.push_back({"sigma_z_max", 1, std::move(cells.sigma_max)});
+    out.push_back(CellField::State);
+    out.push_back(CellField::SigmaMax);
   }
-  results.add_step(date, time, nf, cf);
+  return out;
+}
+
+void write_cell_field(FieldSeriesWriter& results, CellField field, std::vector<double> values) {
+  switch (field) {
+    case CellField::Strain: results.add_cell_field({"strain", 6, std::move(values)}); break;
+    case CellField::Stress: results.add_cell_field({"stress", 6, std::move(values)}); break;
+    case CellField::StressChange: results.add_cell_field({"stress_change", 6, std::move(values)}); break;
+    case CellField::Cm: results.add_cell_field({"cM", 1, std::move(values)}); break;
+    case CellField::State: results.add_cell_field({"state", 1, std::move(values)}); break;
+    case CellField::SigmaMax: results.add_cell_field({"sigma_z_max", 1, std::move(values)}); break;
+  }
 }
 
 }  // namespace ugs::mech

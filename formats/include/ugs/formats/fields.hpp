@@ -44,6 +44,9 @@ public:
   // (cell_count()). `date_iso` must be an ISO 8601 date, not used by an earlier step.
   void add_step(const std::string& date_iso, double time_seconds, std::span<const Field> node_fields,
                 std::span<const Field> cell_fields = {});
+  // Appends a cell field to the step added last, as if add_step had been given it after its cell
+  // fields (the same file): a large output writes its fields one at a time, each gathered only then.
+  void add_cell_field(const Field& field);
   // Closes the HDF5 file, writes the XDMF index and renames both into place.
   void commit();
 

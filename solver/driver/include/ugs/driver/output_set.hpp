@@ -31,9 +31,12 @@ public:
   OutputSet(const RunSettings& o, const Mesh& mesh, const mech::Model& model, const CaseFile& cs,
             const contact::FaultModel* fm);
 
-  // One step: the top surface always, the volume fields when `output` (cells are moved out).
+  // One step: the top surface always, the volume step with its node fields when `output`; its cell
+  // fields follow one at a time, in the order of cell_fields(), through add_cell_field.
   void write_step(const std::string& date, double time, const std::vector<double>& u, bool output,
-                  mech::CellResults& cells, mech::PressureHistory& history);
+                  mech::PressureHistory& history);
+  const std::vector<mech::CellField>& cell_fields() const { return cell_fields_; }
+  void add_cell_field(mech::CellField field, std::vector<double> values);
   contact::FaultOutput* faults() { return faults_.get(); }
   void commit();
 
@@ -41,6 +44,7 @@ private:
   const Mesh& mesh_;
   const mech::Model& model_;
   std::set<std::string> fields_;
+  std::vector<mech::CellField> cell_fields_;
   Mesh top_mesh_;
   std::unique_ptr<FieldSeriesWriter> results_, top_;
   std::unique_ptr<CsvWriter> top_csv_;

@@ -67,6 +67,10 @@ struct CellResults {
   std::vector<double> sigma_max;     // preconsolidation sigma_z [Pa] (hypo-plastic; 0 elsewhere)
 };
 
+// One element result of CellResults, gathered on its own (an output date gathers and writes one
+// at a time, so rank 0 never holds them all: 21 values per cell, 460 MB on the 1.49M-dof box).
+enum class CellField { Strain, Stress, StressChange, Cm, State, SigmaMax };
+
 // The history variables, gathered on rank 0 (restart files).
 struct SavedState {
   std::vector<double> u;          // 3 per mesh node
@@ -98,6 +102,7 @@ public:
   // Collective gathers to rank 0 (empty elsewhere).
   std::vector<double> gather_displacement();  // 3 per mesh node [m]
   CellResults gather_cells();
+  std::vector<double> gather_cell_field(CellField field);  // the same values as gather_cells()'s member
   SavedState gather_state();
   // Collective: sets the state from rank 0's `state` (restart). InputError if sizes do not match.
   void restore_state(const SavedState& state);

@@ -18,9 +18,13 @@ namespace ugs::mech {
 void write_top_surface(FieldSeriesWriter* top, CsvWriter* top_csv, const Mesh& mesh, const Model& model,
                        const std::string& date, double time, const std::vector<double>& u);
 
-// The fields named in `fields` (displacement, pressure, strain, stress, stress_change, cm, state);
-// the cell results are moved out.
-void write_volume_fields(FieldSeriesWriter& results, const std::set<std::string>& fields, PressureHistory& history,
-                         const std::string& date, double time, const std::vector<double>& u, CellResults& cells);
+// The volume fields of an output date, written in two parts so that rank 0 holds one cell field at
+// a time: write_volume_step adds the step with its node fields (displacement, pressure), then each
+// of volume_cell_fields(fields), gathered in that order, goes in with write_cell_field.
+// `fields` names any of displacement, pressure, strain, stress, stress_change, cm, state.
+void write_volume_step(FieldSeriesWriter& results, const std::set<std::string>& fields, PressureHistory& history,
+                       const std::string& date, double time, const std::vector<double>& u);
+std::vector<CellField> volume_cell_fields(const std::set<std::string>& fields);
+void write_cell_field(FieldSeriesWriter& results, CellField field, std::vector<double> values);
 
 }  // namespace ugs::mech
