@@ -13,7 +13,10 @@
 //   - the same case without faults (plain.msh, case_plain.toml) for the continuous peer run.
 // Writes DIR/faulted.msh, plain.msh, case.toml, case_plain.toml, flow.h5, flow_plain.h5.
 //
-//   make_faulted_bench DIR
+//   make_faulted_bench DIR [--coarsen K]
+// --coarsen K (1, 2 or 4) makes the cells K times larger in each direction (about 1/K^3 of the
+// nodes: 2 gives ~66,000) and moves the faults' traces, tops and bottoms to the nearest grid line
+// (the mesh must follow them): the same kind of case, for measurements on a busy machine.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -115,17 +118,28 @@ fields = ["displacement", "stress_change"]
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: make_faulted_bench DIR\n");
+  int coarsen = 1;
+  if (argc == 4 && std::string(argv[2]) == "--coarsen") {
+    const std::string k = argv[3];
+    if (k != "1" && k != "2" && k != "4") {
+      std::fprintf(stderr, "make_faulted_bench: error: --coarsen: '%s' is not 1, 2 or 4 (the cell counts must stay whole)\n", argv[3]);
+      return 2;
+    }
+    coarsen = std::stoi(k);
+  } else if (argc != 2) {
+    std::fprintf(stderr, "usage: make_faulted_bench DIR [--coarsen K]\n");
     return 2;
   }
   const fs::path dir = argv[1];
+  const double h = 100.0 * coarsen;
+  // Snaps a coordinate to the grid line nearest to it (origin o).
+  const auto snap = [h](double v, double o) { return o + h * std::round((v - o) / h); };
   fs::create_directories(dir);
   try {
     BoxMeshSpec s;
-    s.x = linspace(0, 8400, 84);
-    s.y = linspace(0, 8400, 84);
-    s.z = linspace(-6800, 0, 68);
+    s.x = linspace(0, 8400, 84 / coarsen);
+    s.y = linspace(0, 8400, 84 / coarsen);
+    s.z = linspace(-6800, 0, 68 / coarsen);
     s.material = [](const Point3& c) { return material(c); };
     Mesh mesh = make_box_mesh(s);
     mesh.provenance.push_back("make_faulted_bench (bench/faulted)");
@@ -138,9 +152,9 @@ int main(int argc, char** argv) {
       FaultTrace ft;
       ft.name = t.name;
       ft.where = "bench";
-      ft.parts = {{{t.x0, t.y0}, {t.x1, t.y1}}};
-      ft.top = ft.trace_z = t.top;
-      ft.bottom = t.bottom;
+      ft.parts = {{{snap(t.x0, 0), snap(t.y0, 0)}, {snap(t.x1, 0), snap(t.y1, 0)}}};
+      ft.top = ft.trace_z = snap(t.top, -6800);
+      ft.bottom = snap(t.bottom, -6800);
       ft.dip_deg = t.dip;
       ft.dip_dir_deg = t.dip_dir;
       check_fault_trace(ft);
