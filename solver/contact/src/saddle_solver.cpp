@@ -244,17 +244,6 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
   PetscInt its = 0;
   for (;;) {
     CHK(KSPSetReusePreconditioner(ksp_, reuse ? PETSC_TRUE : PETSC_FALSE));
-    if (iterative && pc_built_) {
-      // The blocks' own solvers too: the displacement block (K_gamma) is the nest's own matrix, so
-      // its multigrid would otherwise redo its coarse operators at every solve.
-      PC pc;
-      KSP* sub = nullptr;
-      PetscInt n = 0;
-      CHK(KSPGetPC(ksp_, &pc));
-      CHK(PCFieldSplitGetSubKSP(pc, &n, &sub));
-      for (PetscInt i = 0; i < n; ++i) CHK(KSPSetReusePreconditioner(sub[i], reuse ? PETSC_TRUE : PETSC_FALSE));
-      CHK(PetscFree(sub));
-    }
     if (iterative) {
       guess_ratio_ = guess_.form(op, rhs_, sol_);
       CHK(KSPSetInitialGuessNonzero(ksp_, guess_ratio_ < 1 ? PETSC_TRUE : PETSC_FALSE));
