@@ -11,9 +11,17 @@
 //     before it, reached in the first step) rising monthly to -1 MPa on 2015-11-01; the aquifer
 //     follows with exp(-d / 1 km) of the distance to the pool's edge;
 //   - the same case without faults (plain.msh, case_plain.toml) for the continuous peer run.
-// Writes DIR/faulted.msh, plain.msh, case.toml, case_plain.toml, flow.h5, flow_plain.h5.
+// Writes DIR/faulted.msh, plain.msh, case.toml, case_plain.toml, flow.h5, flow_plain.h5, and for
+// the whole history (bench/faulted/run.sh FAULTED_HISTORY=1) case_history.toml and flow_history.h5:
+// monthly 1950-01-01 .. 2034-01-01 (1,008 steps), primary production 1950-1964 to -8 MPa in the pool,
+// then seasonal storage between -8 and -2 MPa (withdrawal November-March, injection April-October);
+// the aquifer follows the pool two months late (a second spatial mode, so that a step is not simply
+// a multiple of the previous one).
 //
-//   make_faulted_bench DIR
+//   make_faulted_bench DIR [--coarsen K] [--history]
+// --coarsen K (1, 2 or 4) makes the cells K times larger in each direction (about 1/K^3 of the
+// nodes: 2 gives ~66,000) and moves the faults' traces, tops and bottoms to the nearest grid line
+// (the mesh must follow them): the same kind of case, for measurements on a busy machine.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -73,6 +81,25 @@ void write_flow(const Mesh& m, const fs::path& path) {
   cases::write_pressure(path, cases::submesh(m, {"pool", "aquifer"}), s);
 }
 
+// The pool's pressure change [Pa] at month k after 1950-01 (history).
+double pool_history(long k) {
+  if (k <= 0) return 0.0;
+  if (k <= 168) return -8e6 * static_cast<double>(k) / 168.0;  // production to 1964-01
+  const double phase = 2.0 * M_PI * static_cast<double>((k - 168) % 12) / 12.0;  // 0 in January
+  return -5e6 - 3e6 * std::cos(phase - M_PI / 6.0);  // deepest in late February, highest in August
+}
+
+void write_flow_history(const Mesh& m, const fs::path& path) {
+  cases::Series s;
+  s.dates = cases::monthly(1950, 1, 2034, 1);
+  s.dp = [](const Point3& x, std::size_t k) {
+    const double d = std::max(0.0, radius(x) - kRx);
+    const double lag = pool_history(static_cast<long>(k) - 2);
+    return d == 0 ? pool_history(static_cast<long>(k)) : lag * std::exp(-d / 1000.0);
+  };
+  cases::write_pressure(path, cases::submesh(m, {"pool", "aquifer"}), s);
+}
+
 std::string case_text(bool faults) {
   std::string s = R"(# Thesis-scale faulted benchmark (bench/faulted): elastic rock with c_M from eq. 4.1, a hypo-plastic
 # pool and aquifer (Table 4.3), six faults (cohesion 0, friction 30 degrees), one storage half-cycle.
@@ -115,17 +142,30 @@ fields = ["displacement", "stress_change"]
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: make_faulted_bench DIR\n");
+  int coarsen = 1;
+  const bool history = argc >= 3 && std::string(argv[argc - 1]) == "--history";
+  if (history) --argc;
+  if (argc == 4 && std::string(argv[2]) == "--coarsen") {
+    const std::string k = argv[3];
+    if (k != "1" && k != "2" && k != "4") {
+      std::fprintf(stderr, "make_faulted_bench: error: --coarsen: '%s' is not 1, 2 or 4 (the cell counts must stay whole)\n", argv[3]);
+      return 2;
+    }
+    coarsen = std::stoi(k);
+  } else if (argc != 2) {
+    std::fprintf(stderr, "usage: make_faulted_bench DIR [--coarsen K] [--history]\n");
     return 2;
   }
   const fs::path dir = argv[1];
+  const double h = 100.0 * coarsen;
+  // Snaps a coordinate to the grid line nearest to it (origin o).
+  const auto snap = [h](double v, double o) { return o + h * std::round((v - o) / h); };
   fs::create_directories(dir);
   try {
     BoxMeshSpec s;
-    s.x = linspace(0, 8400, 84);
-    s.y = linspace(0, 8400, 84);
-    s.z = linspace(-6800, 0, 68);
+    s.x = linspace(0, 8400, 84 / coarsen);
+    s.y = linspace(0, 8400, 84 / coarsen);
+    s.z = linspace(-6800, 0, 68 / coarsen);
     s.material = [](const Point3& c) { return material(c); };
     Mesh mesh = make_box_mesh(s);
     mesh.provenance.push_back("make_faulted_bench (bench/faulted)");
@@ -138,9 +178,9 @@ int main(int argc, char** argv) {
       FaultTrace ft;
       ft.name = t.name;
       ft.where = "bench";
-      ft.parts = {{{t.x0, t.y0}, {t.x1, t.y1}}};
-      ft.top = ft.trace_z = t.top;
-      ft.bottom = t.bottom;
+      ft.parts = {{{snap(t.x0, 0), snap(t.y0, 0)}, {snap(t.x1, 0), snap(t.y1, 0)}}};
+      ft.top = ft.trace_z = snap(t.top, -6800);
+      ft.bottom = snap(t.bottom, -6800);
       ft.dip_deg = t.dip;
       ft.dip_dir_deg = t.dip_dir;
       check_fault_trace(ft);
@@ -155,6 +195,13 @@ int main(int argc, char** argv) {
     write_msh(mesh, (dir / "faulted.msh").string());
     write_flow(mesh, dir / "flow.h5");
     std::ofstream(dir / "case.toml") << case_text(true);
+    if (history) {
+      write_flow_history(mesh, dir / "flow_history.h5");
+      std::string h = case_text(true);
+      const std::string out = "dates = [\"2015-05-01\", \"2015-11-01\"]";
+      h.replace(h.find(out), out.size(), "dates = [\"1964-01-01\", \"2000-03-01\", \"2033-09-01\", \"2034-01-01\"]\ncheckpoint_every = 60");
+      std::ofstream(dir / "case_history.toml") << h;
+    }
     std::printf("make_faulted_bench: %zu nodes, %zu tetrahedra, %zu interface elements in %zu faults (plain: %zu nodes)\n",
                 mesh.num_nodes(), mesh.count(ElementType::Tetrahedron), ie, rep.faults.size(),
                 mesh.num_nodes() - rep.new_nodes);

@@ -287,6 +287,10 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
   PetscInt its = 0;
   for (;;) {
     CHK(KSPSetReusePreconditioner(ksp_, reuse ? PETSC_TRUE : PETSC_FALSE));
+    if (iterative) {
+      guess_ratio_ = guess_.form(op, rhs_, sol_);
+      CHK(KSPSetInitialGuessNonzero(ksp_, guess_ratio_ < 1 ? PETSC_TRUE : PETSC_FALSE));
+    }
     CHK(KSPSolve(ksp_, rhs_, sol_));
     CHK(KSPGetIterationNumber(ksp_, &its));
     CHK(KSPGetConvergedReason(ksp_, &reason));
@@ -300,6 +304,7 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
   }
   pc_built_ = true;
   last_its_ = static_cast<int>(its);
+  if (iterative && reason >= 0) guess_.remember(sol_);
   return its;
 }
 

@@ -13,6 +13,7 @@
 #include <petscksp.h>
 
 #include "pair_distribution.hpp"
+#include "saddle_guess.hpp"
 #include "saddle_system.hpp"
 #include "ugs/contact/contact.hpp"
 
@@ -58,6 +59,8 @@ private:
   bool pc_built_ = false;
   bool configured_ = false;  // KSPSetFromOptions done since the last reset
   int baseline_its_ = 0, last_its_ = 0;
+  SaddleGuess guess_;  // the field split's first iterate from the last solutions
+  double guess_ratio_ = 1;  // ||b - J x0|| / ||b|| of the last solve's first iterate
 };
 
 }  // namespace ugs::contact::detail
