@@ -112,6 +112,7 @@ void MechanicsSolver::Impl::assemble() {
       }
       scatter(assembler.vals_lin, c, fem::tet4_stiffness(geo[c], elastic_D(c)), true);
     }
+    set_constrained_diagonal(assembler.vals_lin);  // (scatter never touches prescribed rows or columns)
     assembler.have_lin = true;
   }
   // Only the elements whose tangent changed materially are updated (their stiffness difference
@@ -132,36 +133,30 @@ void MechanicsSolver::Impl::assemble() {
   if (!any) return;
   PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
   if (full) {
-    // The elastic part is needed again only when hypo-plastic elements change the matrix.
-    if (has_hyp) assembler.vals = assembler.vals_lin;
-    else assembler.vals.swap(assembler.vals_lin);
+    upload_linear();
     for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
-      scatter(assembler.vals, hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], tangent(h)), false);
+      add_to_matrix(hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], tangent(h)));
       assembler.assembled_Dt[h] = tangent(h);
       assembler.assembled_phase[h] = static_cast<std::int8_t>(hyp.trial[h].phase);
     }
-    set_constrained_diagonal(assembler.vals);  // (scatter never touches prescribed rows or columns)
     assembler.updates_since_full = 0;
-    upload(true, {});
   } else {
-    std::vector<std::int32_t> rows;  // owned nodes whose rows changed
     for (const auto h : stale) {
       fem::Mat6 dD;
       for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembler.assembled_Dt[h][i];
-      scatter(assembler.vals, hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], dD), false);
+      add_to_matrix(hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], dD));
       assembler.assembled_Dt[h] = tangent(h);
       assembler.assembled_phase[h] = static_cast<std::int8_t>(hyp.trial[h].phase);
-      for (const auto v : lm.cells[hyp.cells[h]])
-        if (v < lm.n_owned) rows.push_back(v);
     }
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
     ++assembler.updates_since_full;
-    upload(false, rows);
   }
+  if (has_hyp) {  // (a linear A is complete once created)
+    UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  }
+  assembler.mat_changed = true;
   if (!has_hyp) {
     // The matrix can never change: the assembly arrays are not needed again.
-    std::vector<double>().swap(assembler.vals);
     std::vector<double>().swap(assembler.vals_lin);
     std::vector<PetscInt>().swap(assembler.cols);
     std::vector<PetscInt>().swap(assembler.rowptr);
@@ -189,7 +184,7 @@ void MechanicsSolver::Impl::scatter_dummy_diag(int c) {
       for (int ci = 0; ci < 3; ++ci) assembler.diag_scale[3 * t[i] + ci] += Ke[(3 * i + ci) * 12 + 3 * i + ci];
 }
 
-void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes) {
+void MechanicsSolver::Impl::upload_linear() {
   const PetscInt m = 3 * lm.n_owned;
   if (!assembler.mat_created) {
     UGS_PETSC(MatCreate(lm.comm, &A));
@@ -206,7 +201,7 @@ void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t
       UGS_PETSC(MatHYPRESetPreallocation(A, 0, dnnz.data(), 0, onnz.data()));
       for (PetscInt i = 0; i < m; ++i) {
         const PetscInt row = lo + i;
-        UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals.data() + assembler.rowptr[i],
+        UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals_lin.data() + assembler.rowptr[i],
                                INSERT_VALUES));
       }
       UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
@@ -214,9 +209,9 @@ void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t
     } else {
       UGS_PETSC(MatSetType(A, MATAIJ));
       if (lm.size == 1) {
-        UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, assembler.rowptr.data(), assembler.cols.data(), assembler.vals.data()));
+        UGS_PETSC(MatSeqAIJSetPreallocationCSR(A, assembler.rowptr.data(), assembler.cols.data(), assembler.vals_lin.data()));
       } else {
-        UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, assembler.rowptr.data(), assembler.cols.data(), assembler.vals.data()));
+        UGS_PETSC(MatMPIAIJSetPreallocationCSR(A, assembler.rowptr.data(), assembler.cols.data(), assembler.vals_lin.data()));
       }
       UGS_PETSC(MatSetOption(A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
     }
@@ -243,21 +238,29 @@ void MechanicsSolver::Impl::upload(bool all_rows, const std::vector<std::int32_t
     UGS_PETSC(KSPSetOperators(ksp, A, A));
     assembler.mat_created = true;
   } else {
-    auto set_row = [&](PetscInt i) {
+    // Every row back to the elastic part; the hypo-plastic elements are added after this flush
+    // (INSERT and ADD cannot be mixed between assemblies).
+    for (PetscInt i = 0; i < m; ++i) {
       const PetscInt row = static_cast<PetscInt>(3 * lm.node_begin) + i;
-      UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals.data() + assembler.rowptr[i],
-                             INSERT_VALUES));
-    };
-    if (all_rows) {
-      for (PetscInt i = 0; i < m; ++i) set_row(i);
-    } else {
-      for (const auto v : changed_nodes)
-        for (PetscInt c = 0; c < 3; ++c) set_row(3 * v + c);
+      UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i],
+                             assembler.vals_lin.data() + assembler.rowptr[i], INSERT_VALUES));
     }
-    UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-    UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    UGS_PETSC(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY));
+    UGS_PETSC(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY));
   }
-  assembler.mat_changed = true;
+}
+
+void MechanicsSolver::Impl::add_to_matrix(int c, const std::array<double, 144>& Ke) {
+  const auto& t = lm.cells[c];
+  PetscInt rows[12], cols[12];  // negative: left out (PETSc skips negative indices)
+  for (int i = 0; i < 4; ++i)
+    for (int ci = 0; ci < 3; ++ci) {
+      const bool fixed = (lm.fixed[t[i]] >> ci) & 1;
+      const PetscInt g = static_cast<PetscInt>(3 * lm.global[t[i]] + ci);
+      cols[3 * i + ci] = fixed ? -1 : g;
+      rows[3 * i + ci] = fixed || t[i] >= lm.n_owned ? -1 : g;
+    }
+  UGS_PETSC(MatSetValues(A, 12, rows, 12, cols, Ke.data(), ADD_VALUES));
 }
 
 }  // namespace ugs::mech

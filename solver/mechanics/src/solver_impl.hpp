@@ -84,7 +84,9 @@ struct Assembler {
   std::vector<PetscInt> node_ptr;      // per owned node: range of its neighbour blocks
   std::vector<std::int64_t> node_cols; // neighbour global node numbers, sorted per row
   std::vector<PetscInt> rowptr, cols;  // scalar CSR of the owned rows (global columns)
-  std::vector<double> vals_lin, vals, diag_scale;
+  // The elastic elements' part of the matrix (with the prescribed rows' diagonal): A's values are
+  // kept in A only, the hypo-plastic elements' stiffness (or its change) added into it.
+  std::vector<double> vals_lin, diag_scale;
   std::vector<fem::Mat6> assembled_Dt;
   std::vector<std::int8_t> assembled_phase;  // branch in the matrix
   bool have_lin = false, mat_created = false, mat_changed = false;
@@ -248,8 +250,11 @@ struct MechanicsSolver::Impl {
   // fine level must keep the matrix it was set up with: PCHYPRE's converted copy.)
   bool hypre_owns_matrix() const;
 
-  // Copies the assembled values into A: every row, or the rows of `changed_nodes` (owned).
-  void upload(bool all_rows, const std::vector<std::int32_t>& changed_nodes);
+  // A from the elastic part: created with it (first call), or its rows reset to it.
+  void upload_linear();
+  // Adds an element's stiffness (or its change) into A as scatter() would into a CSR array:
+  // owned rows, no prescribed row or column; the same sums in the same order, so the same bits.
+  void add_to_matrix(int c, const std::array<double, 144>& Ke);
 
   // ---- linear solve ---------------------------------------------------------------------------
   struct SolveResult {
