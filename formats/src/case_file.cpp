@@ -33,113 +33,187 @@ double positive(const TomlTable& t, const std::string& key, double v) {
   return v;
 }
 
+// Runs one check; a bad value is added to the list and the reading goes on (GMT's n_errors), so a
+// case file with several problems names them all. A value that failed keeps its default, and the
+// checks that depend on it are skipped, so one mistake gives one line.
+struct Collect {
+  ErrorList& errors;
+  template <class F>
+  bool operator()(F&& check) const {
+    try {
+      check();
+      return true;
+    } catch (const InputError& e) {
+      errors.add(e);
+      return false;
+    }
+  }
+};
+
 // k0 / k_Hmax / k_hmin of [initial_stress] or of a material: positive and finite, k0 not with the others.
-void read_ratios(const TomlTable& t, std::optional<double>& kH, std::optional<double>& kh) {
+void read_ratios(const TomlTable& t, std::optional<double>& kH, std::optional<double>& kh, const Collect& ok,
+                 bool check_k0) {
+  bool fine = true;
   for (const char* key : {"k0", "k_Hmax", "k_hmin"})
-    if (t.has(key)) positive(t, key, t.number(key));
+    if (t.has(key) && (check_k0 || std::string(key) != "k0")) fine = ok([&] { positive(t, key, t.number(key)); }) && fine;
   // k0 is the shorthand for k_Hmax = k_hmin = k0: both forms at once would leave one unused.
   for (const char* key : {"k_Hmax", "k_hmin"})
     if (t.has(key) && t.has("k0"))
-      throw t.error(key, fmt::format("{} given together with k0 = {} (k0 is the shorthand for k_Hmax = k_hmin; give one "
-                                     "form)", t.number(key), t.number("k0")));
-  if (t.has("k0")) kH = kh = t.number("k0");
-  if (t.has("k_Hmax")) kH = t.number("k_Hmax");
-  if (t.has("k_hmin")) kh = t.number("k_hmin");
+      fine = ok([&] {
+        throw t.error(key, fmt::format("{} given together with k0 = {} (k0 is the shorthand for k_Hmax = k_hmin; give one "
+                                       "form)", t.number(key), t.number("k0")));
+      }) && fine;
+  if (!fine) return;
+  ok([&] {
+    if (t.has("k0")) kH = kh = t.number("k0");
+    if (t.has("k_Hmax")) kH = t.number("k_Hmax");
+    if (t.has("k_hmin")) kh = t.number("k_hmin");
+  });
 }
 
-MaterialSpec parse_material(const TomlTable& t) {
-  if (t.has("Hmax_azimuth_deg"))
-    throw t.error("Hmax_azimuth_deg", "the azimuth of sigma'_Hmax is global: set it in [initial_stress] (a material may set "
-                                      "only its own k0, k_Hmax, k_hmin)");
-  t.reject_unknown({"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b",
-                    "c_R", "E_MPa", "K_m_per_s", "porosity", "sigma_z_min_MPa", "k0", "k_Hmax", "k_hmin"});
+MaterialSpec parse_material(const TomlTable& t, const Collect& ok, bool& named) {
   MaterialSpec m;
-  m.name = t.string("name");
   m.where = t.where();
-  m.law = t.has("law") ? parse_law(t) : MaterialLaw::ElasticDepth;
-  m.biot = t.number_or("biot", 1.0);
-  if (m.biot < 0 || m.biot > 1) throw t.error("biot", "must lie in [0, 1]");
-  if (t.has("nu") && t.has("nu_z")) throw t.error("nu", "give either nu (isotropic) or nu_z, not both");
-  m.nu_z = t.has("nu") ? t.number("nu") : t.number_or("nu_z", 0.3);
-  const std::string nu_key = t.has("nu") ? "nu" : "nu_z";
-  if (!(m.nu_z > -1 && m.nu_z < 0.5)) throw t.error(nu_key, fmt::format("Poisson ratio {} outside (-1, 0.5)", m.nu_z));
-  m.Eh_over_Ez = positive(t, "Eh_over_Ez", t.number_or("Eh_over_Ez", 1.0));
-  m.nuh_over_nuz = t.number_or("nuh_over_nuz", 1.0);
-  const double nu_h = m.nu_z * m.nuh_over_nuz;
-  if (!(nu_h > -1 && nu_h < 1)) throw t.error("nuh_over_nuz", fmt::format("horizontal Poisson ratio {} outside (-1, 1)", nu_h));
-  m.Gh_over_Gz = positive(t, "Gh_over_Gz", t.number_or("Gh_over_Gz", 1.0));
-  m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2));
-  m.cm_b = t.number_or("cm_b", 1.1347);
-  if (!(m.cm_b >= 0))  // (non-finite numbers are refused by the TOML reader)
-    throw t.error("cm_b", fmt::format("must not be negative (c_M = cm_a sigma^-cm_b decreases with stress), got {}", m.cm_b));
-  if (t.has("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
-  m.sigma_z_min_MPa = positive(t, "sigma_z_min_MPa", t.number_or("sigma_z_min_MPa", 0.1));
-  if (t.has("E_MPa")) m.E_Pa = positive(t, "E_MPa", t.number("E_MPa")) * kMPa;
-  if (m.law == MaterialLaw::Linear && !m.E_Pa) throw t.error("E_MPa", "is required for law = \"linear\"");
-  if (m.law == MaterialLaw::Hypoplastic && !m.c_R) throw t.error("c_R", "is required for law = \"hypoplastic\"");
-  if (t.has("K_m_per_s")) {
+  ok([&] {
+    if (t.has("Hmax_azimuth_deg"))
+      throw t.error("Hmax_azimuth_deg", "the azimuth of sigma'_Hmax is global: set it in [initial_stress] (a material may "
+                                        "set only its own k0, k_Hmax, k_hmin)");
+  });
+  t.reject_unknown({"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b", "c_R",
+                    "E_MPa", "K_m_per_s", "porosity", "sigma_z_min_MPa", "k0", "k_Hmax", "k_hmin", "Hmax_azimuth_deg"},
+                   ok.errors);
+  named = ok([&] { m.name = t.string("name"); });
+  ok([&] { m.law = t.has("law") ? parse_law(t) : MaterialLaw::ElasticDepth; });
+  ok([&] {
+    m.biot = t.number_or("biot", 1.0);
+    if (m.biot < 0 || m.biot > 1) throw t.error("biot", "must lie in [0, 1]");
+  });
+  const bool nu_read = ok([&] {
+    if (t.has("nu") && t.has("nu_z")) throw t.error("nu", "give either nu (isotropic) or nu_z, not both");
+    const double nu = t.has("nu") ? t.number("nu") : t.number_or("nu_z", 0.3);
+    const std::string nu_key = t.has("nu") ? "nu" : "nu_z";
+    if (!(nu > -1 && nu < 0.5)) throw t.error(nu_key, fmt::format("Poisson ratio {} outside (-1, 0.5)", nu));
+    m.nu_z = nu;
+  });
+  ok([&] { m.Eh_over_Ez = positive(t, "Eh_over_Ez", t.number_or("Eh_over_Ez", 1.0)); });
+  ok([&] {
+    m.nuh_over_nuz = t.number_or("nuh_over_nuz", 1.0);
+    const double nu_h = m.nu_z * m.nuh_over_nuz;
+    if (nu_read && !(nu_h > -1 && nu_h < 1))
+      throw t.error("nuh_over_nuz", fmt::format("horizontal Poisson ratio {} outside (-1, 1)", nu_h));
+  });
+  ok([&] { m.Gh_over_Gz = positive(t, "Gh_over_Gz", t.number_or("Gh_over_Gz", 1.0)); });
+  ok([&] { m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2)); });
+  ok([&] {
+    m.cm_b = t.number_or("cm_b", 1.1347);
+    if (!(m.cm_b >= 0))  // (non-finite numbers are refused by the TOML reader)
+      throw t.error("cm_b",
+                    fmt::format("must not be negative (c_M = cm_a sigma^-cm_b decreases with stress), got {}", m.cm_b));
+  });
+  ok([&] {
+    if (t.has("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
+  });
+  ok([&] { m.sigma_z_min_MPa = positive(t, "sigma_z_min_MPa", t.number_or("sigma_z_min_MPa", 0.1)); });
+  ok([&] {
+    if (t.has("E_MPa")) m.E_Pa = positive(t, "E_MPa", t.number("E_MPa")) * kMPa;
+  });
+  // (A value given but refused above is one problem, not also a missing one.)
+  ok([&] {
+    if (m.law == MaterialLaw::Linear && !t.has("E_MPa")) throw t.error("E_MPa", "is required for law = \"linear\"");
+  });
+  ok([&] {
+    if (m.law == MaterialLaw::Hypoplastic && !t.has("c_R")) throw t.error("c_R", "is required for law = \"hypoplastic\"");
+  });
+  ok([&] {
+    if (!t.has("K_m_per_s")) return;
     const auto k = t.numbers("K_m_per_s");
     if (k.size() != 3) throw t.error("K_m_per_s", "expected [Kx, Ky, Kz]");
     for (double v : k)
       if (!(v > 0)) throw t.error("K_m_per_s", fmt::format("conductivities must be positive, got {}", v));
     m.K = std::array<double, 3>{k[0], k[1], k[2]};
-  }
-  if (t.has("porosity")) {
+  });
+  ok([&] {
+    if (!t.has("porosity")) return;
     const double n = t.number("porosity");
     if (!(n > 0 && n < 1)) throw t.error("porosity", "must lie in (0, 1)");
     m.porosity = n;
-  }
-  read_ratios(t, m.k_Hmax, m.k_hmin);
+  });
+  read_ratios(t, m.k_Hmax, m.k_hmin, ok, true);
   return m;
 }
 
-PoolSpec parse_pool(const TomlTable& t) {
-  t.reject_unknown({"name", "materials", "aquifer_materials", "schedule", "column", "reference_pressure_MPa"});
+PoolSpec parse_pool(const TomlTable& t, const Collect& ok) {
+  t.reject_unknown({"name", "materials", "aquifer_materials", "schedule", "column", "reference_pressure_MPa"}, ok.errors);
   PoolSpec p;
-  p.name = t.string("name");
   p.where = t.where();
-  p.materials = t.strings("materials");
-  if (p.materials.empty()) throw t.error("materials", "needs at least one material");
-  if (t.has("aquifer_materials")) p.aquifer_materials = t.strings("aquifer_materials");
-  p.schedule = resolve_relative(t.file(), t.string("schedule"));
-  p.column = t.has("column") ? t.string("column") : "p_norm";
-  if (p.column != "p_norm" && p.column != "p_MPa") throw t.error("column", "must be p_norm or p_MPa");
-  if (t.has("reference_pressure_MPa")) p.reference_pressure_Pa = positive(t, "reference_pressure_MPa", t.number("reference_pressure_MPa")) * kMPa;
-  if (p.column == "p_norm" && !p.reference_pressure_Pa)
-    throw t.error("reference_pressure_MPa", "is required for a normalized schedule (column = \"p_norm\")");
+  ok([&] { p.name = t.string("name"); });
+  ok([&] {
+    const auto materials = t.strings("materials");
+    if (materials.empty()) throw t.error("materials", "needs at least one material");
+    p.materials = materials;
+  });
+  ok([&] {
+    if (t.has("aquifer_materials")) p.aquifer_materials = t.strings("aquifer_materials");
+  });
+  ok([&] { p.schedule = resolve_relative(t.file(), t.string("schedule")); });
+  const bool column_read = ok([&] {
+    const std::string column = t.has("column") ? t.string("column") : "p_norm";
+    if (column != "p_norm" && column != "p_MPa") throw t.error("column", "must be p_norm or p_MPa");
+    p.column = column;
+  });
+  ok([&] {
+    if (t.has("reference_pressure_MPa"))
+      p.reference_pressure_Pa = positive(t, "reference_pressure_MPa", t.number("reference_pressure_MPa")) * kMPa;
+  });
+  ok([&] {
+    if (column_read && p.column == "p_norm" && !t.has("reference_pressure_MPa"))
+      throw t.error("reference_pressure_MPa", "is required for a normalized schedule (column = \"p_norm\")");
+  });
   return p;
 }
 
-FaultSpec parse_fault(const TomlTable& t) {
-  t.reject_unknown({"name", "cohesion_MPa", "friction_deg"});
+FaultSpec parse_fault(const TomlTable& t, const Collect& ok) {
+  t.reject_unknown({"name", "cohesion_MPa", "friction_deg"}, ok.errors);
   FaultSpec f;
-  f.name = t.string("name");
   f.where = t.where();
-  f.cohesion_Pa = t.number_or("cohesion_MPa", 0.0) * kMPa;
-  if (f.cohesion_Pa < 0) throw t.error("cohesion_MPa", "must not be negative");
-  f.friction_deg = t.number_or("friction_deg", 30.0);
-  if (!(f.friction_deg > 0 && f.friction_deg < 90)) throw t.error("friction_deg", "must lie in (0, 90) degrees");
+  ok([&] { f.name = t.string("name"); });
+  ok([&] {
+    f.cohesion_Pa = t.number_or("cohesion_MPa", 0.0) * kMPa;
+    if (f.cohesion_Pa < 0) throw t.error("cohesion_MPa", "must not be negative");
+  });
+  ok([&] {
+    f.friction_deg = t.number_or("friction_deg", 30.0);
+    if (!(f.friction_deg > 0 && f.friction_deg < 90)) throw t.error("friction_deg", "must lie in (0, 90) degrees");
+  });
   return f;
 }
 
-TractionSpec parse_traction(const TomlTable& t) {
-  t.reject_unknown({"group", "traction_MPa", "in_situ"});
+// The entry, or nothing when its group cannot be read (then it loads nothing and is not compared).
+std::optional<TractionSpec> parse_traction(const TomlTable& t, const Collect& ok) {
+  t.reject_unknown({"group", "traction_MPa", "in_situ"}, ok.errors);
   TractionSpec s;
   s.where = t.where();
-  s.group = t.string("group");
-  if (s.group.rfind("bnd:", 0) == 0) s.group = s.group.substr(4);
-  if (s.group.empty()) throw t.error("group", "is empty (expected the name of a mesh group bnd:<name>, e.g. \"east\")");
-  s.in_situ = t.boolean_or("in_situ", false);
-  if (s.in_situ && t.has("traction_MPa"))
-    throw t.error("traction_MPa", "given together with in_situ = true (give one: a constant traction or the in-situ one)");
-  if (!s.in_situ && !t.has("traction_MPa"))
-    throw InputError(s.where, fmt::format("boundary_traction on '{}' has no value (expected traction_MPa = [tx, ty, tz] or "
-                                          "in_situ = true)", s.group));
-  if (t.has("traction_MPa")) {
+  const bool named = ok([&] {
+    s.group = t.string("group");
+    if (s.group.rfind("bnd:", 0) == 0) s.group = s.group.substr(4);
+    if (s.group.empty()) throw t.error("group", "is empty (expected the name of a mesh group bnd:<name>, e.g. \"east\")");
+  });
+  const bool kind_read = ok([&] { s.in_situ = t.boolean_or("in_situ", false); });
+  ok([&] {
+    if (!kind_read) return;
+    if (s.in_situ && t.has("traction_MPa"))
+      throw t.error("traction_MPa", "given together with in_situ = true (give one: a constant traction or the in-situ one)");
+    if (!s.in_situ && !t.has("traction_MPa"))
+      throw InputError(s.where, fmt::format("boundary_traction on '{}' has no value (expected traction_MPa = [tx, ty, tz] or "
+                                            "in_situ = true)", s.group));
+  });
+  ok([&] {
+    if (!t.has("traction_MPa")) return;
     const auto v = t.numbers("traction_MPa");
     if (v.size() != 3) throw t.error("traction_MPa", fmt::format("has {} values (expected [tx, ty, tz] in MPa)", v.size()));
     for (int k = 0; k < 3; ++k) s.traction_Pa[k] = v[k] * kMPa;
-  }
+  });
+  if (!named) return std::nullopt;
   return s;
 }
 
@@ -163,132 +237,249 @@ const MaterialSpec* CaseFile::material(const std::string& name) const {
   return nullptr;
 }
 
-CaseFile read_case_file(const std::string& path) {
-  const TomlTable root = TomlTable::parse_file(path);
-  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "boundary_traction", "fault",
-                       "solver", "output", "scenario"});
-  CaseFile c;
-  c.path = path;
-  c.crs = root.string_opt("crs").value_or("");
-  if (auto m = root.table_opt("model")) {
-    m->reject_unknown({"name", "start", "end"});
-    c.start_date = m->string_opt("start").value_or("");
-    c.end_date = m->string_opt("end").value_or("");
+namespace {
+
+void read_model_and_water(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  ok([&] { c.crs = root.string_opt("crs").value_or(""); });
+  std::optional<TomlTable> m, w;
+  ok([&] { m = root.table_opt("model"); });
+  if (m) {
+    m->reject_unknown({"name", "start", "end"}, ok.errors);
+    ok([&] { c.start_date = m->string_opt("start").value_or(""); });
+    ok([&] { c.end_date = m->string_opt("end").value_or(""); });
   }
-  if (auto w = root.table_opt("water")) {
-    w->reject_unknown({"unit_weight_N_per_m3", "compressibility_per_MPa"});
-    c.water_unit_weight = positive(*w, "unit_weight_N_per_m3", w->number_or("unit_weight_N_per_m3", 9810.0));
-    c.water_compressibility = w->number_or("compressibility_per_MPa", 4.4e-4) / kMPa;
-    if (!(c.water_compressibility >= 0))
-      throw w->error("compressibility_per_MPa", fmt::format("must not be negative, got {}", c.water_compressibility * kMPa));
+  ok([&] { w = root.table_opt("water"); });
+  if (w) {
+    w->reject_unknown({"unit_weight_N_per_m3", "compressibility_per_MPa"}, ok.errors);
+    ok([&] { c.water_unit_weight = positive(*w, "unit_weight_N_per_m3", w->number_or("unit_weight_N_per_m3", 9810.0)); });
+    ok([&] {
+      const double per_Pa = w->number_or("compressibility_per_MPa", 4.4e-4) / kMPa;
+      if (!(per_Pa >= 0))
+        throw w->error("compressibility_per_MPa", fmt::format("must not be negative, got {}", per_Pa * kMPa));
+      c.water_compressibility = per_Pa;
+    });
   }
-  if (auto s = root.table_opt("initial_stress")) {
-    s->reject_unknown({"surface_elevation_m", "lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0", "k_Hmax",
-                       "k_hmin", "Hmax_azimuth_deg"});
-    auto& is = c.initial_stress;
-    is.surface_elevation = s->number_or("surface_elevation_m", 0.0);
-    is.lithostatic_gradient = positive(*s, "lithostatic_gradient_MPa_per_m", s->number_or("lithostatic_gradient_MPa_per_m", 0.0226)) * kMPa;
+}
+
+void read_initial_stress(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> s;
+  ok([&] { s = root.table_opt("initial_stress"); });
+  if (!s) return;
+  s->reject_unknown({"surface_elevation_m", "lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0", "k_Hmax",
+                     "k_hmin", "Hmax_azimuth_deg"},
+                    ok.errors);
+  auto& is = c.initial_stress;
+  ok([&] { is.surface_elevation = s->number_or("surface_elevation_m", 0.0); });
+  const bool litho = ok([&] {
+    is.lithostatic_gradient =
+        positive(*s, "lithostatic_gradient_MPa_per_m", s->number_or("lithostatic_gradient_MPa_per_m", 0.0226)) * kMPa;
+  });
+  ok([&] {
     is.hydrostatic_gradient = s->number_or("hydrostatic_gradient_MPa_per_m", 0.0100) * kMPa;
-    if (is.hydrostatic_gradient < 0 || is.hydrostatic_gradient >= is.lithostatic_gradient)
+    if (is.hydrostatic_gradient < 0 || (litho && is.hydrostatic_gradient >= is.lithostatic_gradient))
       throw s->error("hydrostatic_gradient_MPa_per_m", "must lie in [0, lithostatic gradient)");
-    is.k0 = positive(*s, "k0", s->number_or("k0", 1.0));
-    // k0 is the shorthand for k_Hmax = k_hmin = k0 (kH(), kh()): the optionals stay empty with k0,
-    // and k0 with either of them is refused by read_ratios.
-    if (s->has("k_Hmax") || s->has("k_hmin")) read_ratios(*s, is.k_Hmax, is.k_hmin);
+  });
+  ok([&] { is.k0 = positive(*s, "k0", s->number_or("k0", 1.0)); });
+  // k0 is the shorthand for k_Hmax = k_hmin = k0 (kH(), kh()): the optionals stay empty with k0,
+  // and k0 with either of them is refused by read_ratios.
+  if (s->has("k_Hmax") || s->has("k_hmin")) read_ratios(*s, is.k_Hmax, is.k_hmin, ok, false);
+  ok([&] {
     is.Hmax_azimuth_deg = s->number_or("Hmax_azimuth_deg", 0.0);
     if (!(is.Hmax_azimuth_deg >= 0 && is.Hmax_azimuth_deg < 360))
       throw s->error("Hmax_azimuth_deg", fmt::format("{} is outside [0, 360) degrees (clockwise from north, the mesh's +y axis)",
                                                      is.Hmax_azimuth_deg));
-  }
+  });
+}
+
+void read_materials_and_pools(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::vector<TomlTable> materials, pools;
+  ok([&] { materials = root.tables("material"); });
   std::set<std::string> names;
-  for (const auto& t : root.tables("material")) {
-    c.materials.push_back(parse_material(t));
-    if (!names.insert(c.materials.back().name).second) throw t.error("name", "material defined twice");
+  bool all_named = true;  // a pool's material is compared only with a complete list of names
+  for (const auto& t : materials) {
+    bool named = false;
+    c.materials.push_back(parse_material(t, ok, named));
+    all_named = all_named && named;
+    if (named && !names.insert(c.materials.back().name).second)
+      ok([&] { throw t.error("name", "material defined twice"); });
   }
-  for (const auto& t : root.tables("pool")) c.pools.push_back(parse_pool(t));
+  ok([&] { pools = root.tables("pool"); });
+  for (const auto& t : pools) c.pools.push_back(parse_pool(t, ok));
+  if (!all_named) return;
   for (const auto& p : c.pools)
     for (const auto& list : {p.materials, p.aquifer_materials})
       for (const auto& m : list)
-        if (!c.material(m))   throw InputError(p.where, fmt::format("pool '{}': material '{}' is not defined", p.name, m));
-  if (auto b = root.table_opt("boundary")) {
-    b->reject_unknown({"fixed", "rollers", "free"});
-    if (b->has("fixed")) c.fixed_boundaries = boundary_list(*b, "fixed");
-    if (b->has("rollers")) c.roller_boundaries = boundary_list(*b, "rollers");
-    if (b->has("free")) c.free_boundaries = boundary_list(*b, "free");
-    for (const auto& r : c.roller_boundaries)
-      for (const auto& f : c.fixed_boundaries)
-        if (r == f) throw b->error("rollers", fmt::format("boundary '{}' is also in fixed", r));
-    for (const auto& r : c.free_boundaries)
-      for (const auto& f : c.fixed_boundaries)
-        if (r == f) throw b->error("free", fmt::format("boundary '{}' is also in fixed", r));
-    for (const auto& r : c.free_boundaries)
-      for (const auto& f : c.roller_boundaries)
-        if (r == f) throw b->error("free", fmt::format("boundary '{}' is also in rollers", r));
+        if (!c.material(m))
+          ok([&] { throw InputError(p.where, fmt::format("pool '{}': material '{}' is not defined", p.name, m)); });
+}
+
+void read_boundaries(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> b;
+  ok([&] { b = root.table_opt("boundary"); });
+  const bool explicit_fixed = b && b->has("fixed");
+  if (b) {
+    b->reject_unknown({"fixed", "rollers", "free"}, ok.errors);
+    const bool fixed = ok([&] {
+      if (b->has("fixed")) c.fixed_boundaries = boundary_list(*b, "fixed");
+    });
+    const bool rollers = ok([&] {
+      if (b->has("rollers")) c.roller_boundaries = boundary_list(*b, "rollers");
+    });
+    const bool free = ok([&] {
+      if (b->has("free")) c.free_boundaries = boundary_list(*b, "free");
+    });
+    if (fixed && rollers)
+      for (const auto& r : c.roller_boundaries)
+        for (const auto& f : c.fixed_boundaries)
+          if (r == f) ok([&] { throw b->error("rollers", fmt::format("boundary '{}' is also in fixed", r)); });
+    if (fixed && free)
+      for (const auto& r : c.free_boundaries)
+        for (const auto& f : c.fixed_boundaries)
+          if (r == f) ok([&] { throw b->error("free", fmt::format("boundary '{}' is also in fixed", r)); });
+    if (rollers && free)
+      for (const auto& r : c.free_boundaries)
+        for (const auto& f : c.roller_boundaries)
+          if (r == f) ok([&] { throw b->error("free", fmt::format("boundary '{}' is also in rollers", r)); });
   }
-  for (const auto& t : root.tables("boundary_traction")) {
-    c.tractions.push_back(parse_traction(t));
-    const std::string& g = c.tractions.back().group;
-    for (std::size_t k = 0; k + 1 < c.tractions.size(); ++k)
-      if (c.tractions[k].group == g)
-        throw t.error("group", fmt::format("boundary '{}' is already loaded by the entry at {}", g, c.tractions[k].where));
+  std::vector<TomlTable> entries;
+  ok([&] { entries = root.tables("boundary_traction"); });
+  for (const auto& t : entries) {
+    const auto spec = parse_traction(t, ok);
+    if (!spec) continue;
+    const std::string& g = spec->group;
+    bool fine = true;
+    for (const auto& earlier : c.tractions)
+      if (earlier.group == g)
+        fine = ok([&] {
+          throw t.error("group", fmt::format("boundary '{}' is already loaded by the entry at {}", g, earlier.where));
+        }) && fine;
     // A group is held or loaded, not both (`free` states that a side carries no load beyond the initial state).
-    const bool explicit_fixed = root.table_opt("boundary") && root.table_opt("boundary")->has("fixed");
     for (const auto& [list, what] : {std::pair{&c.fixed_boundaries, "fixed"}, std::pair{&c.roller_boundaries, "rollers"},
                                      std::pair{&c.free_boundaries, "free"}})
       if (std::find(list->begin(), list->end(), g) != list->end())
-        throw t.error("group", fmt::format("boundary '{}' is also in [boundary] {}{} (a group is either held or loaded: "
-                                           "take it out of {})", g, what,
-                                           std::string(what) == "fixed" && !explicit_fixed
-                                               ? " (the default: fixed = [\"west\", \"east\", \"south\", \"north\", \"bottom\"])"
-                                               : "",
-                                           what));
+        fine = ok([&] {
+          throw t.error("group", fmt::format("boundary '{}' is also in [boundary] {}{} (a group is either held or loaded: "
+                                             "take it out of {})", g, what,
+                                             std::string(what) == "fixed" && !explicit_fixed
+                                                 ? " (the default: fixed = [\"west\", \"east\", \"south\", \"north\", \"bottom\"])"
+                                                 : "",
+                                             what));
+        }) && fine;
+    if (fine) c.tractions.push_back(*spec);
   }
-  for (const auto& t : root.tables("fault")) c.faults.push_back(parse_fault(t));
-  if (auto s = root.table_opt("solver")) {
-    s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
-                       "reuse_preconditioner", "fault_solver", "steps", "turning_point_tolerance_MPa"});
-    c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8));
-    c.max_newton_iterations = integer_in(*s, "max_newton_iterations", 25, 1, 1000000000);  // (ugs-solve: at most 1000)
-    c.linear_solver = s->string_opt("linear_solver").value_or("cg-hypre");
-    // The names are checked by the solver libraries that own them (ugs/mechanics/case_section.hpp).
-    c.inversion_rule = s->string_opt("inversion_rule").value_or("sigma-max");
-    if (!std::set<std::string>{"sigma-max", "sigma-inversion", "stress-dependent"}.count(c.inversion_rule))
+}
+
+void read_faults(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::vector<TomlTable> faults;
+  ok([&] { faults = root.tables("fault"); });
+  for (const auto& t : faults) c.faults.push_back(parse_fault(t, ok));
+}
+
+void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> s;
+  ok([&] { s = root.table_opt("solver"); });
+  if (!s) return;
+  s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
+                     "reuse_preconditioner", "fault_solver", "steps", "turning_point_tolerance_MPa"},
+                    ok.errors);
+  for (const char* key : {"tolerance", "max_newton_iterations", "linear_solver", "fault_solver"})
+    if (s->has(key)) c.key_lines[std::string("solver.") + key] = s->where(key);
+  ok([&] { c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8)); });
+  ok([&] { c.max_newton_iterations = integer_in(*s, "max_newton_iterations", 25, 1, 1000000000); });  // (ugs-solve: at most 1000)
+  // The names are checked by the solver libraries that own them (ugs/mechanics/case_section.hpp).
+  ok([&] { c.linear_solver = s->string_opt("linear_solver").value_or("cg-hypre"); });
+  const bool rule_read = ok([&] {
+    const std::string rule = s->string_opt("inversion_rule").value_or("sigma-max");
+    if (!std::set<std::string>{"sigma-max", "sigma-inversion", "stress-dependent"}.count(rule))
       throw s->error("inversion_rule", "must be one of sigma-max, sigma-inversion, stress-dependent");
-    c.max_substeps = integer_in(*s, "max_substeps", 64, 1, 4096);
-    c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true);
-    c.steps = s->string_opt("steps").value_or("every-date");
-    if (c.steps != "every-date" && c.steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");
-    if (c.steps == "turning-points" && c.inversion_rule != "sigma-max")
+    c.inversion_rule = rule;
+  });
+  ok([&] { c.max_substeps = integer_in(*s, "max_substeps", 64, 1, 4096); });
+  ok([&] { c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true); });
+  ok([&] {
+    const std::string steps = s->string_opt("steps").value_or("every-date");
+    if (steps != "every-date" && steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");
+    c.steps = steps;
+    if (rule_read && c.steps == "turning-points" && c.inversion_rule != "sigma-max")
       throw s->error("steps", "turning-points needs inversion_rule = \"sigma-max\" (the other rules depend on the whole path)");
-    c.turning_point_tolerance = 1e6 * positive(*s, "turning_point_tolerance_MPa", s->number_or("turning_point_tolerance_MPa", 1e-2));
-    c.fault_solver = s->string_opt("fault_solver").value_or("auto");  // checked by ugs/contact/case_section.hpp
-  }
-  if (auto sc = root.table_opt("scenario")) {
-    sc->reject_unknown({"pressure_scale", "reference_date", "max_scale", "scale_tolerance"});
+  });
+  ok([&] {
+    c.turning_point_tolerance =
+        1e6 * positive(*s, "turning_point_tolerance_MPa", s->number_or("turning_point_tolerance_MPa", 1e-2));
+  });
+  ok([&] { c.fault_solver = s->string_opt("fault_solver").value_or("auto"); });  // checked by ugs/contact/case_section.hpp
+}
+
+void read_scenario(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> sc;
+  ok([&] { sc = root.table_opt("scenario"); });
+  if (!sc) return;
+  sc->reject_unknown({"pressure_scale", "reference_date", "max_scale", "scale_tolerance"}, ok.errors);
+  ok([&] {
     c.scenario_scale = sc->number_or("pressure_scale", 1.0);
     if (!(c.scenario_scale >= 0) || !std::isfinite(c.scenario_scale)) throw sc->error("pressure_scale", "must not be negative");
-    c.scenario_reference_date = sc->string_opt("reference_date").value_or("");
-    if (!c.scenario_reference_date.empty() && !parse_iso_date(c.scenario_reference_date))
-      throw sc->error("reference_date", fmt::format("'{}' is not an ISO 8601 date", c.scenario_reference_date));
-    c.scenario_max_scale = positive(*sc, "max_scale", sc->number_or("max_scale", 10.0));
+  });
+  ok([&] {
+    const std::string date = sc->string_opt("reference_date").value_or("");
+    if (!date.empty() && !parse_iso_date(date))
+      throw sc->error("reference_date", fmt::format("'{}' is not an ISO 8601 date", date));
+    c.scenario_reference_date = date;
+  });
+  ok([&] { c.scenario_max_scale = positive(*sc, "max_scale", sc->number_or("max_scale", 10.0)); });
+  ok([&] {
     c.scenario_tolerance = positive(*sc, "scale_tolerance", sc->number_or("scale_tolerance", 0.01));
     if (c.scenario_tolerance >= 1) throw sc->error("scale_tolerance", "must be below 1 (a relative width)");
-  }
-  if (auto o = root.table_opt("output")) {
-    o->reject_unknown({"dates", "fields", "checkpoint_every"});
+  });
+}
+
+void read_output(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> o;
+  ok([&] { o = root.table_opt("output"); });
+  if (!o) return;
+  o->reject_unknown({"dates", "fields", "checkpoint_every"}, ok.errors);
+  ok([&] {
     if (o->has("dates")) c.output_dates = o->strings("dates");
-    for (const auto& d : c.output_dates)
-      if (!parse_iso_date(d)) throw o->error("dates", fmt::format("'{}' is not an ISO 8601 date", d));
-    if (o->has("fields")) {
-      c.output_fields = o->strings("fields");
-      static const std::set<std::string> known{"displacement", "strain", "stress", "stress_change", "cm", "state", "pressure"};
-      for (const auto& f : c.output_fields)
-        if (!known.count(f))
-          throw o->error("fields", fmt::format("unknown field '{}' (displacement, strain, stress, stress_change, cm, state, "
-                                               "pressure)", f));
-    }
-    c.checkpoint_every = integer_in(*o, "checkpoint_every", 0, 0, 1000000);
-  }
+  });
+  for (const auto& d : c.output_dates)
+    if (!parse_iso_date(d)) ok([&] { throw o->error("dates", fmt::format("'{}' is not an ISO 8601 date", d)); });
+  ok([&] {
+    if (o->has("fields")) c.output_fields = o->strings("fields");
+  });
+  static const std::set<std::string> known{"displacement", "strain", "stress", "stress_change", "cm", "state", "pressure"};
+  for (const auto& f : c.output_fields)
+    if (!known.count(f))
+      ok([&] {
+        throw o->error("fields", fmt::format("unknown field '{}' (displacement, strain, stress, stress_change, cm, state, "
+                                             "pressure)", f));
+      });
+  ok([&] { c.checkpoint_every = integer_in(*o, "checkpoint_every", 0, 0, 1000000); });
+}
+
+}  // namespace
+
+CaseFile read_case_file(const std::string& path, ErrorList& errors) {
+  const TomlTable root = TomlTable::parse_file(path);  // (a file that cannot be read or parsed stops here)
+  const Collect ok{errors};
+  root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "boundary_traction", "fault",
+                       "solver", "output", "scenario"},
+                      errors);
+  CaseFile c;
+  c.path = path;
+  read_model_and_water(root, c, ok);
+  read_initial_stress(root, c, ok);
+  read_materials_and_pools(root, c, ok);
+  read_boundaries(root, c, ok);
+  read_faults(root, c, ok);
+  read_solver(root, c, ok);
+  read_scenario(root, c, ok);
+  read_output(root, c, ok);
+  return c;
+}
+
+CaseFile read_case_file(const std::string& path) {
+  ErrorList errors;
+  CaseFile c = read_case_file(path, errors);
+  errors.throw_if_any();
   return c;
 }
 

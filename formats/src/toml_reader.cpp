@@ -190,6 +190,15 @@ void TomlTable::reject_unknown(const std::set<std::string>& known) const {
     }
 }
 
+void TomlTable::reject_unknown(const std::set<std::string>& known, ErrorList& errors) const {
+  for (const auto& k : keys())
+    if (!known.count(k)) {
+      std::string list;
+      for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
+      errors.add(error(k, "unknown key (known here: " + list + ")"));
+    }
+}
+
 std::string resolve_relative(const std::string& base_file, const std::string& relative) {
   namespace fs = std::filesystem;
   const fs::path r(relative);

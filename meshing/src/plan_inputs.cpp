@@ -83,14 +83,14 @@ LoadedPlan load_plan_inputs(const PlanInputs& in) {
   LoadedPlan out;
   PlanSpec& spec = out.spec;
   spec.grading = in.grading;
-  if (!(in.grading > 0) || !std::isfinite(in.grading)) throw InputError("--grading", "must be > 0 (size growth per metre)");
-  if (in.hmax < 0 || !std::isfinite(in.hmax)) throw InputError("--hmax", "must be a size in metres, > 0");
-  if (in.refine_size < 0 || !std::isfinite(in.refine_size)) throw InputError("--refine-size", "must be a size in metres, > 0");
+  if (!(in.grading > 0) || !std::isfinite(in.grading)) throw InputError("size grading", "must be > 0 (size growth per metre)");
+  if (in.hmax < 0 || !std::isfinite(in.hmax)) throw InputError("far-field size", "must be a size in metres, > 0");
+  if (in.refine_size < 0 || !std::isfinite(in.refine_size)) throw InputError("refinement size", "must be a size in metres, > 0");
 
   // Model CRS: given, else the first input that has one, else EPSG:32632.
   std::string model_wkt;
   if (!in.crs.empty()) {
-    model_wkt = geo::crs_wkt(in.crs, "--crs");
+    model_wkt = geo::crs_wkt(in.crs, "model CRS");
   } else {
     std::vector<std::string> files;
     if (!in.use_box) files.push_back(in.domain_file);
@@ -105,13 +105,13 @@ LoadedPlan load_plan_inputs(const PlanInputs& in) {
     }
     if (model_wkt.empty()) {
       model_wkt = geo::crs_wkt("EPSG:32632", "");
-      out.notes.push_back("model CRS EPSG:32632 (no input has a CRS; give --crs to change it)");
+      out.notes.push_back("model CRS EPSG:32632 (no input has a CRS; give the model CRS to change it)");
     } else {
       geo::QuietGdal quiet;
       OGRSpatialReference s = geo::srs_from_wkt(model_wkt);
       if (!s.IsProjected())
-        throw InputError("--crs", fmt::format("the inputs are in {}, which is not projected: give the model CRS in "
-                                              "metres with --crs (e.g. EPSG:32632)",
+        throw InputError("model CRS", fmt::format("the inputs are in {}, which is not projected: give the model CRS in "
+                                                  "metres (e.g. EPSG:32632)",
                                               geo::crs_label(model_wkt)));
     }
   }
@@ -123,7 +123,7 @@ LoadedPlan load_plan_inputs(const PlanInputs& in) {
   if (in.use_box) {
     const auto [x0, x1, y0, y1] = in.box;
     if (!(x0 < x1) || !(y0 < y1) || !std::isfinite(x0 + x1 + y0 + y1))
-      throw InputError("--box", fmt::format("xmin/xmax/ymin/ymax must be increasing: got {}/{}/{}/{}", x0, x1, y0, y1));
+      throw InputError("model box", fmt::format("xmin/xmax/ymin/ymax must be increasing: got {}/{}/{}/{}", x0, x1, y0, y1));
     auto ring = std::make_unique<OGRLinearRing>();
     ring->addPoint(x0, y0);
     ring->addPoint(x1, y0);
@@ -155,8 +155,8 @@ LoadedPlan load_plan_inputs(const PlanInputs& in) {
   }
   spec.hmax = in.hmax > 0 ? in.hmax : domain_size.value_or(0);
   if (!(spec.hmax > 0))
-    throw InputError(in.use_box ? "--box" : in.domain_file,
-                     fmt::format("no size for the far field: give --hmax or a '{}' field on the domain", in.size_field));
+    throw InputError(in.use_box ? "model box" : in.domain_file,
+                     fmt::format("no size for the far field: give the far-field size or a '{}' field on the domain", in.size_field));
   {
     geo::Feature f;
     geo::collect_geometry(*domain, f);
@@ -184,7 +184,7 @@ LoadedPlan load_plan_inputs(const PlanInputs& in) {
         throw InputError(path, fmt::format("{}: the polygon is not valid (self-intersecting ring?)", feature_label(f)));
       const double size = f.size ? *f.size : in.refine_size;
       if (!(size > 0))
-        throw InputError(path, fmt::format("{} has no '{}' field: give its target size there or with --refine-size",
+        throw InputError(path, fmt::format("{} has no '{}' field: give its target size there or the refinement size",
                                            feature_label(f), in.size_field));
       auto g = clipped(f, path, cut);
       if (!g) continue;

@@ -603,10 +603,10 @@ Mesh make_plan_mesh(const PlanSpec& spec, PlanMeshStats* stats) {
   // Refuse before meshing what would not fit in memory (a size of 1e-9 m grew gmsh's memory without
   // bound until std::bad_alloc).
   if (const PlanEstimate est = estimate_plan_triangles(spec); !(est.triangles <= spec.max_triangles))
-    throw InputError("--max-elements",
+    throw InputError("element limit",
                      fmt::format("the sizes ask for about {:.3g} triangles (estimate: {:.4g} x the integral of 1/size^2 "
                                  "over the plan), more than the limit of {:.0f}: the smallest size is {:g} m ({}); use "
-                                 "larger sizes or raise --max-elements",
+                                 "larger sizes or raise the element limit",
                                  est.triangles, kTrianglesPerSquare, spec.max_triangles, est.smallest_size,
                                  est.smallest_where));
   GmshSession session(spec.gmsh_messages);

@@ -1,5 +1,7 @@
 // The case file: the sample twin's case parses with SI conversions; unknown keys and
 // non-physical values are refused with file:line.
+#include <sstream>
+
 #include <gtest/gtest.h>
 
 #include "run_tool.hpp"
@@ -220,4 +222,28 @@ TEST(CaseFile, BoundaryTractionBadInput) {
             "c.toml:2: 'boundary_traction[0].group': boundary 'east' is also in [boundary] fixed (the default: fixed = "
             "[\"west\", \"east\", \"south\", \"north\", \"bottom\"]) (a group is either held or loaded: take it out of fixed)");
   EXPECT_NE(error_of(b + "group = \"east\"\ntraction = [1, 2, 3]\n").find("unknown key"), std::string::npos);
+}
+
+// Every problem of the file is reported at once, one line each in the order of the file's lines,
+// and one mistake gives one line (a value that failed is not also reported as missing).
+TEST(CaseFile, EveryProblemIsReportedAtOnceInFileOrder) {
+  const std::string e = error_of(
+      "[[material]]\nname = \"a\"\nlaw = \"hypoplastic\"\nc_R = -3\nporosity = 2\n"  // lines 1-5
+      "[[pool]]\nname = \"p\"\nmaterials = [\"b\"]\nschedule = \"s.csv\"\ncolumn = \"p_MPa\"\n"  // 6-10
+      "[[fault]]\nname = \"f\"\nfriction_deg = 95\ncohesion_MPa = -1\n"                        // 11-14
+      "[[boundary_traction]]\ngroup = \"top\"\n"                                            // 15-16
+      "[scenario]\nmax_scale = 0\nsure = true\n");                                          // 17-19
+  std::vector<std::string> lines;
+  std::istringstream in(e);
+  for (std::string line; std::getline(in, line);) lines.push_back(line.substr(line.find("c.toml")));
+  const std::vector<std::string> expected{
+      "c.toml:4: 'material[0].c_R': must be positive, got -3",
+      "c.toml:5: 'material[0].porosity': must lie in (0, 1)",
+      "c.toml:6: pool 'p': material 'b' is not defined",
+      "c.toml:13: 'fault[0].friction_deg': must lie in (0, 90) degrees",
+      "c.toml:14: 'fault[0].cohesion_MPa': must not be negative",
+      "c.toml:15: boundary_traction on 'top' has no value (expected traction_MPa = [tx, ty, tz] or in_situ = true)",
+      "c.toml:18: 'scenario.max_scale': must be positive, got 0",
+      "c.toml:19: 'scenario.sure': unknown key (known here: max_scale, pressure_scale, reference_date, scale_tolerance)"};
+  EXPECT_EQ(lines, expected) << e;
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -544,7 +545,7 @@ INSTANTIATE_TEST_SUITE_P(
                               "inversion_rule = \"sigma-inversion\"\nsteps = \"turning-points\"", "turning-points needs inversion_rule"},
                       // Numbers the reader accepts but ugs-solve cannot use (issue 20).
                       BadCase{"tolerance_one", "inversion_rule = \"sigma-max\"", "inversion_rule = \"sigma-max\"\ntolerance = 1",
-                              "bad.toml: [solver] tolerance = 1: outside [1e-14, 1)"},
+                              "bad.toml:21: [solver] tolerance = 1: outside [1e-14, 1)"},
                       BadCase{"tolerance_below_precision", "inversion_rule = \"sigma-max\"",
                               "inversion_rule = \"sigma-max\"\ntolerance = 1e-20", "[solver] tolerance = 1e-20: outside [1e-14, 1)"},
                       BadCase{"newton_iterations_huge", "inversion_rule = \"sigma-max\"",
@@ -564,10 +565,11 @@ TEST(SolveTool, EverySolverSettingProblemIsReportedAtOnce) {
           "bad.toml");
   const auto r = test::run(test::solve_cmd() + " " + column_args(d, "bad.toml") + " -o " + d / "out.h5");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  const char* expected[] = {"bad.toml: [solver] linear_solver = \"lu\": must be one of cg-hypre, cg-gamg, mumps, cholmod",
-                            "bad.toml: [solver] tolerance = 1: outside [1e-14, 1)",
-                            "bad.toml: [solver] max_newton_iterations = 5000: more than 1000",
-                            "bad.toml: [solver] fault_solver = \"x\": must be one of auto, mumps, fieldsplit"};
+  // In the order of their lines (21-24 of bad.toml).
+  const char* expected[] = {"bad.toml:21: [solver] tolerance = 1: outside [1e-14, 1)",
+                            "bad.toml:22: [solver] max_newton_iterations = 5000: more than 1000",
+                            "bad.toml:23: [solver] linear_solver = \"lu\": must be one of cg-hypre, cg-gamg, mumps, cholmod",
+                            "bad.toml:24: [solver] fault_solver = \"x\": must be one of auto, mumps, fieldsplit"};
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 4) << r.err;
   std::size_t from = 0;
   for (const char* e : expected) {
@@ -578,6 +580,55 @@ TEST(SolveTool, EverySolverSettingProblemIsReportedAtOnce) {
     from = at;
   }
   EXPECT_FALSE(fs::exists(d / "out.h5"));
+}
+
+// Every problem of the whole case file is reported at once (GMT's n_errors): one line each, in the
+// order of the file's lines, from the reader's sections (materials, boundaries, output, an unknown
+// table) and the solver libraries' own checks alike; exit 2 and nothing written.
+TEST(SolveTool, EveryCaseFileProblemIsReportedAtOnceInFileOrder) {
+  Dir d("solve-bad-sections");
+  ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
+  std::string text = test::slurp(d / "case.toml");
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto p = text.find(from);
+    ASSERT_NE(p, std::string::npos) << from;
+    text.replace(p, from.size(), to);
+  };
+  replace("lithostatic_gradient_MPa_per_m = 0.0226", "lithostatic_gradient_MPa_per_m = 0.0226\nk0 = -1");  // line 4
+  replace("nu_z = 0.3", "nu_z = 0.7\nbiot = 2");                                                   // lines 10, 11
+  replace("fixed = [\"bottom\"]", "fixed = [\"bottm\"]");                                          // line 17
+  replace("inversion_rule = \"sigma-max\"", "inversion_rule = \"sigma-max\"\ntolerance = 1\nlinear_solver = \"lu\"");  // 23, 24
+  text += "\n[output]\ndates = [\"2002-13-01\"]\nevery = 2\n";                                     // lines 27, 28
+  test::spit(d / "bad.toml", text);
+  auto files_in = [](const Dir& dir) {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir.path)) names.insert(e.path().filename().string());
+    return names;
+  };
+  const auto files_before = files_in(d);
+  const auto r = test::run(test::solve_cmd() + " " + column_args(d, "bad.toml") + " -o " + d / "out.h5");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const char* expected[] = {
+      "bad.toml:4: 'initial_stress.k0': must be positive, got -1",
+      "bad.toml:10: 'material[0].nu_z': Poisson ratio 0.7 outside (-1, 0.5)",
+      "bad.toml:11: 'material[0].biot': must lie in [0, 1]",
+      "bad.toml:17: 'boundary.fixed': unknown boundary 'bottm' (west, east, south, north, bottom, top)",
+      "bad.toml:23: [solver] tolerance = 1: outside [1e-14, 1) (a relative residual ||r|| / ||r_0||)",
+      "bad.toml:24: [solver] linear_solver = \"lu\": must be one of cg-hypre, cg-gamg, mumps, cholmod",
+      "bad.toml:27: 'output.dates': '2002-13-01' is not an ISO 8601 date",
+      "bad.toml:28: 'output.every': unknown key (known here: checkpoint_every, dates, fields)"};
+  std::vector<std::string> lines;
+  std::istringstream in(r.err);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), std::size(expected)) << r.err;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    EXPECT_EQ(lines[k].rfind("ugs-solve: error: ", 0), 0u) << lines[k];
+    const auto at = lines[k].find("bad.toml:");
+    ASSERT_NE(at, std::string::npos) << lines[k];
+    EXPECT_EQ(lines[k].substr(at), expected[k]);
+  }
+  EXPECT_FALSE(fs::exists(d / "out.h5"));
+  EXPECT_EQ(files_in(d), files_before) << "nothing written";
 }
 
 TEST(SolveTool, PressureFromAnotherMeshIsBadInput) {

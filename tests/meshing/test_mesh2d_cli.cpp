@@ -163,7 +163,7 @@ TEST_F(Mesh2dCli, BadInputs) {
   expect_bad("--box 1/0/0/1 --hmax 100", "--box: xmin/xmax/ymin/ymax must be increasing");
   expect_bad("--box 0/1/0 --hmax 100", "expected xmin/xmax/ymin/ymax");
   expect_bad("--box 0/1/a/1 --hmax 100", "'a' is not a number");
-  expect_bad("--box 0/1000/0/1000", "give --hmax");
+  expect_bad("--box 0/1000/0/1000", "--box: no size for the far field: give the far-field size (--hmax) or");
   expect_bad("--box 0/1000/0/1000 --hmax 100 --refine " + p("nope.geojson").string(), "nope.geojson: cannot open");
   expect_bad("--box 680000/686000/4950000/4954000 --hmax 500 --refine " + p("traces.geojson").string(),
              "has no 'size_m' field");

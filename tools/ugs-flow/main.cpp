@@ -321,5 +321,8 @@ int main(int argc, char** argv) {
   app.add_option("--calibrate-tolerance", o.calibrate_tolerance, "Relative tolerance on the matched influx")->capture_default_str();
   app.add_option("--calibration-out", o.calibration_out, "Calibrated K table (CSV; '-' = stdout)")->capture_default_str();
   app.add_option("--factor-cache", o.cache, "Factorizations kept in memory (one per step size)")->capture_default_str();
+  tool.name_setting("end date", "--end");
+  tool.name_setting("pool selection", "--pool");
+  tool.name_setting("longest step", "--max-step");
   return tool.run(argc, argv, [&] { run(o, tool); });
 }

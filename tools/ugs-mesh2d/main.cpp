@@ -82,6 +82,12 @@ int main(int argc, char** argv) {
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH (default: binary)");
   tool.add_output("-", "Plan mesh (MSH 4.1)");
 
+  tool.name_setting("size grading", "--grading");
+  tool.name_setting("far-field size", "--hmax");
+  tool.name_setting("refinement size", "--refine-size");
+  tool.name_setting("model CRS", "--crs");
+  tool.name_setting("model box", "--box");
+  tool.name_setting("element limit", "--max-elements");
   return tool.run(argc, argv, [&] {
     const auto t0 = std::chrono::steady_clock::now();
     if (opt.box.empty() && opt.in.domain_file.empty())
@@ -94,8 +100,8 @@ int main(int argc, char** argv) {
       throw ugs::InputError("-o", "refusing to write a binary mesh to a terminal: redirect stdout, use -o FILE or --ascii");
 
     ugs::LoadedPlan loaded = ugs::load_plan_inputs(opt.in);
-    for (const auto& n : loaded.notes) ugs::cli::detail("{}", n);
-    for (const auto& w : loaded.warnings) ugs::cli::warning("{}", w);
+    for (const auto& n : loaded.notes) ugs::cli::detail("{}", tool.with_flags(n));
+    for (const auto& w : loaded.warnings) ugs::cli::warning("{}", tool.with_flags(w));
     loaded.spec.algorithm = opt.algorithm == "delaunay" ? 5 : opt.algorithm == "meshadapt" ? 1 : 6;
     loaded.spec.gmsh_messages = ugs::cli::verbosity() >= 2;
     if (!(opt.max_elements > 0) || !std::isfinite(opt.max_elements))

@@ -136,6 +136,9 @@ int main(int argc, char** argv) {
       for (int k = i + 1; k < argc; ++k) petsc_args.emplace_back(argv[k]);
       break;
     }
+  tool.name_setting("linear solver", "--solver");
+  tool.name_setting("restart state", "--restart");
+  tool.name_setting("partition method", "--partition");
   return tool.run(ours, argv, [&] {
     ugs::mech::PetscSession petsc(petsc_args);
     // One voice: messages (and the error line) come from rank 0 unless -vv asks for all ranks.

@@ -17,7 +17,7 @@ void check_fault_section(const CaseFile& cs, ErrorList& errors) {
     known = known || name == cs.fault_solver;
     list += (list.empty() ? "" : ", ") + name;
   }
-  if (!known) errors.add(cs.path, fmt::format("[solver] fault_solver = \"{}\": must be one of {}", cs.fault_solver, list));
+  if (!known) errors.add(cs.where("solver.fault_solver"), fmt::format("[solver] fault_solver = \"{}\": must be one of {}", cs.fault_solver, list));
 }
 
 }  // namespace ugs::contact

@@ -125,8 +125,9 @@ private:
       if (rank_ != 0) return;
       root_ = std::make_unique<Root>();
       Root& R = *root_;
-      R.cs = read_case_file(o_.case_file);
+      // Every problem of the case file at once: the reader's and the solver libraries' own checks.
       ErrorList errors;
+      R.cs = read_case_file(o_.case_file, errors);
       mech::check_solver_section(R.cs, errors);
       contact::check_fault_section(R.cs, errors);
       errors.throw_if_any();

@@ -191,7 +191,7 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
       const std::uint32_t d = fm.dof_of_node[n];
       if (fm.pool_of_dof[d] >= 0 && fm.pool_of_dof[d] != pi)
         throw InputError(fm.pools[pi].where, fmt::format("pools '{}' and '{}' share node {} of {}: give each pool its own sub-mesh or "
-                                                         "choose one with --pool",
+                                                         "choose one with the pool selection",
                                                          fm.pools[fm.pool_of_dof[d]].name, fm.pools[pi].name, mesh.node_tags[n],
                                                          opt.mesh_name));
       fm.pool_of_dof[d] = pi;

@@ -53,7 +53,7 @@ PoolSchedule read_pool_schedule(const PoolSpec& pool, const ScheduleLimits& limi
         throw InputError(table.where(r), fmt::format("date {} is earlier than the row before ({}): dates must increase",
                                                      format_iso_date(t), format_iso_date(prev)));
       if (t - prev > limits.max_step_seconds)
-        throw InputError(table.where(r), fmt::format("gap of {} after {} is longer than the step ({}; --max-step sets it)",
+        throw InputError(table.where(r), fmt::format("gap of {} after {} is longer than the step ({}; the longest step sets it)",
                                                      days(t - prev), format_iso_date(prev), days(limits.max_step_seconds)));
     }
     s.times.push_back(t);
@@ -82,7 +82,7 @@ RunWindow run_window(const CaseFile& c, const std::vector<PoolSchedule>& schedul
     throw InputError(c.path, fmt::format("the run ends ({}) before it starts ({})", format_iso_date(w.end), format_iso_date(w.start)));
   if (end) {
     if (*end <= w.start || *end > w.end)
-      throw InputError("--end", fmt::format("{} lies outside the run {} .. {}", format_iso_date(*end), format_iso_date(w.start),
+      throw InputError("end date", fmt::format("{} lies outside the run {} .. {}", format_iso_date(*end), format_iso_date(w.start),
                                             format_iso_date(w.end)));
     w.truncated = *end < w.end;
     w.end = *end;

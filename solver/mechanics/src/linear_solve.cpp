@@ -73,7 +73,7 @@ void MechanicsSolver::Impl::setup_ksp() {
       UGS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
       break;
     case LinearSolver::Cholmod:
-      if (lm.size > 1) throw InputError("--solver", "cholmod runs on one process; use mumps under mpirun");
+      if (lm.size > 1) throw InputError("linear solver", "cholmod runs on one process; use mumps under mpirun");
       set_krylov();
       UGS_PETSC(PCSetType(pc, PCCHOLESKY));
       UGS_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERCHOLMOD));

@@ -84,7 +84,7 @@ std::vector<int> scotch_parts(const Model& model, std::size_t n, int nparts) {
   SCOTCH_stratExit(&strat);
   SCOTCH_graphExit(&graph);
   SCOTCH_contextExit(&context);
-  if (!ok) throw ComputeError("Scotch could not partition the mesh graph; try --partition rcb");
+  if (!ok) throw ComputeError("Scotch could not partition the mesh graph; try the rcb partition method");
   std::vector<int> part(parttab.begin(), parttab.end());
   return part;
 }

@@ -10,7 +10,7 @@ LinearSolver parse_linear_solver(const std::string& s) {
   if (s == "cg-hypre") return LinearSolver::CgHypre;
   if (s == "mumps") return LinearSolver::Mumps;
   if (s == "cholmod") return LinearSolver::Cholmod;
-  throw InputError("--solver", "'" + s + "' is not one of cg-gamg, cg-hypre, mumps, cholmod");
+  throw InputError("linear solver", "'" + s + "' is not one of cg-gamg, cg-hypre, mumps, cholmod");
 }
 
 const char* linear_solver_name(LinearSolver s) {
@@ -181,7 +181,7 @@ void MechanicsSolver::restore_state(const SavedState& st) {
     const std::size_t nn = lm.n_global_nodes, nc = lm.n_global_cells;
     if (st.u.size() != 3 * nn || st.dp.size() != nc || st.eps.size() != 6 * nc || st.dsig.size() != 6 * nc ||
         st.hypo.size() != 4 * nc)
-      throw InputError("--restart", fmt::format("the restart state does not match the mesh ({} nodes, {} cells)", nn, nc));
+      throw InputError("restart state", fmt::format("the restart state does not match the mesh ({} nodes, {} cells)", nn, nc));
   });
   auto bcast = [&](const std::vector<double>& src, std::size_t n) {
     std::vector<double> v(n);

@@ -105,6 +105,17 @@ std::string& Tool::add_output(const std::string& default_path, const std::string
   return output_;
 }
 
+std::string Tool::with_flags(std::string line) const {
+  for (const auto& [setting, flag] : settings_) {
+    if (line.rfind(setting + ": ", 0) == 0) {
+      line = flag + line.substr(setting.size());
+    } else if (const auto at = line.find(setting); at != std::string::npos) {
+      line.insert(at + setting.size(), " (" + flag + ")");
+    }
+  }
+  return line;
+}
+
 int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   for (int i = 0; i < argc; ++i) command_line_ += (i ? " " : "") + quote_arg(argv[i]);
   install_output_cleanup_handlers();
@@ -135,12 +146,12 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     const std::string all = e.what();
     for (std::size_t p = 0; p <= all.size();) {
       const auto q = std::min(all.find('\n', p), all.size());
-      std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), all.substr(p, q - p).c_str());
+      std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), with_flags(all.substr(p, q - p)).c_str());
       p = q + 1;
     }
     return 2;
   } catch (const ComputeError& e) {
-    std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), e.what());
+    std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), with_flags(e.what()).c_str());
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "%s: error: out of memory while %s\n", g_tool.c_str(), g_activity);

@@ -4,6 +4,7 @@
 // Values are converted to SI on reading (MPa -> Pa, degrees stay degrees where named *_deg).
 #pragma once
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -118,9 +119,23 @@ struct CaseFile {
   double scenario_max_scale = 10.0;
   double scenario_tolerance = 0.01;        // relative width of the final bracket
 
+  // "file:line" of a key given in the file, by its path ("solver.linear_solver"); the file alone
+  // for a key not given. The libraries that check their settings after reading name the line.
+  std::map<std::string, std::string> key_lines;
+  std::string where(const std::string& key_path) const {
+    const auto it = key_lines.find(key_path);
+    return it == key_lines.end() ? path : it->second;
+  }
+
   const MaterialSpec* material(const std::string& name) const;
 };
 
+// Throws one InputError naming every problem of the file (one "file:line: 'key': what" line each,
+// in file order).
 CaseFile read_case_file(const std::string& path);
+// Adds every problem to `errors` instead, so that the libraries' own checks of their sections
+// (e.g. ugs/mechanics/case_section.hpp) join the same report; throws only when the file cannot be
+// read or is not TOML.
+CaseFile read_case_file(const std::string& path, ErrorList& errors);
 
 }  // namespace ugs

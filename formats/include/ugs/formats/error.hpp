@@ -1,8 +1,10 @@
 // Typed errors: library code throws, only a tool's main turns them into a one-line
 // message and an exit code (2 for bad input or usage, 1 for a failed computation).
 #pragma once
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace ugs {
 
@@ -19,22 +21,41 @@ private:
 };
 
 // Every problem found in one pass over an input (as GMT's parse() counts n_errors): checked in
-// full, then thrown as one InputError holding one "where: what" line per problem; the tool prints
-// each line as its own error line.
+// full, then thrown as one InputError holding one "where: what" line per problem, in the order of
+// the lines they name ("file:LINE"; problems without a line keep their order, after those with
+// one); the tool prints each line as its own error line.
 class ErrorList {
 public:
   void add(const std::string& where, const std::string& message) {
-    text_ += (text_.empty() ? "" : "\n") + (where.empty() ? message : where + ": " + message);
-    ++count_;
+    items_.push_back({line_of(where), where.empty() ? message : where + ": " + message});
   }
-  std::size_t size() const { return count_; }
+  void add(const InputError& e) { items_.push_back({line_of(e.where()), e.what()}); }
+  std::size_t size() const { return items_.size(); }
   void throw_if_any() const {
-    if (count_) throw InputError("", text_);
+    if (items_.empty()) return;
+    auto sorted = items_;
+    std::stable_sort(sorted.begin(), sorted.end(), [](const Item& a, const Item& b) { return a.line < b.line; });
+    std::string text;
+    for (const auto& i : sorted) text += (text.empty() ? "" : "\n") + i.text;
+    throw InputError("", text);
   }
 
 private:
-  std::string text_;
-  std::size_t count_ = 0;
+  struct Item {
+    unsigned long line;  // the line named by "file:LINE", or the largest value when none is named
+    std::string text;
+  };
+  static unsigned long line_of(const std::string& where) {
+    const auto colon = where.rfind(':');
+    if (colon == std::string::npos || colon + 1 == where.size()) return ~0ul;
+    unsigned long line = 0;
+    for (std::size_t k = colon + 1; k < where.size(); ++k) {
+      if (where[k] < '0' || where[k] > '9') return ~0ul;
+      line = line * 10 + static_cast<unsigned long>(where[k] - '0');
+    }
+    return line;
+  }
+  std::vector<Item> items_;
 };
 
 // The computation failed (no convergence, singular system, ...). Exit code 1.

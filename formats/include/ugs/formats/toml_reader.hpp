@@ -44,6 +44,8 @@ public:
 
   // Throws for the first key of this table not in `known` (after all getters were called).
   void reject_unknown(const std::set<std::string>& known) const;
+  // Adds every key of this table not in `known` to `errors` (one line each).
+  void reject_unknown(const std::set<std::string>& known, ErrorList& errors) const;
   std::vector<std::string> keys() const;
 
 private:

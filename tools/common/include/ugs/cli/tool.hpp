@@ -5,6 +5,8 @@
 #pragma once
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -27,6 +29,13 @@ public:
   std::string& add_output(const std::string& default_path, const std::string& what);
   std::string& output() { return output_; }
 
+  // Library code names the caller's settings in words ("end date"), never a tool's flags: an error
+  // line that starts with `setting: ` is printed as `flag: `, and other mentions of the setting get
+  // " (flag)" after them.
+  void name_setting(const std::string& setting, const std::string& flag) { settings_.emplace_back(setting, flag); }
+  // `line` with the flags of the settings it names (also for notes and warnings).
+  std::string with_flags(std::string line) const;
+
   // Parses argv and runs `body` inside the one place where errors surface. Returns the exit code.
   int run(int argc, char** argv, const std::function<void()>& body);
 
@@ -38,6 +47,7 @@ private:
   CLI::App app_;
   std::string output_ = "-";
   std::string command_line_;
+  std::vector<std::pair<std::string, std::string>> settings_;  // setting in words -> flag
 };
 
 // What the tool is doing, for "out of memory while <activity>" (Tool::run; also when std::bad_alloc
