@@ -1,0 +1,142 @@
+// The field split's first iterate (solver/contact/src/saddle_guess.cpp): the least-squares
+// projection of b on J times the stored solutions, exact when b lies in that span.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <petscksp.h>
+
+#include "saddle_guess.hpp"
+#include "ugs/mechanics/petsc_session.hpp"
+
+namespace {
+
+using ugs::contact::detail::SaddleGuess;
+
+constexpr PetscInt kN = 12;
+
+// A non-symmetric, non-singular test matrix: diagonal 1..n, 0.5 above, -0.25 below.
+Mat make_matrix() {
+  Mat J;
+  MatCreateSeqAIJ(PETSC_COMM_SELF, kN, kN, 3, nullptr, &J);
+  for (PetscInt i = 0; i < kN; ++i) {
+    MatSetValue(J, i, i, 1.0 + i, INSERT_VALUES);
+    if (i + 1 < kN) MatSetValue(J, i, i + 1, 0.5, INSERT_VALUES);
+    if (i > 0) MatSetValue(J, i, i - 1, -0.25, INSERT_VALUES);
+  }
+  MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY);
+  MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY);
+  return J;
+}
+
+Vec vec(const std::vector<double>& v) {
+  Vec x;
+  VecCreateSeq(PETSC_COMM_SELF, kN, &x);
+  for (PetscInt i = 0; i < kN; ++i) VecSetValue(x, i, v[i], INSERT_VALUES);
+  VecAssemblyBegin(x);
+  VecAssemblyEnd(x);
+  return x;
+}
+
+std::vector<double> values(Vec x) {
+  std::vector<double> v(kN);
+  const PetscScalar* a = nullptr;
+  VecGetArrayRead(x, &a);
+  for (PetscInt i = 0; i < kN; ++i) v[i] = a[i];
+  VecRestoreArrayRead(x, &a);
+  return v;
+}
+
+std::vector<double> unit(int k) {
+  std::vector<double> v(kN, 0.0);
+  v[k] = 1.0;
+  return v;
+}
+
+TEST(SaddleGuess, StartsFromZeroWithoutHistory) {
+  Mat J = make_matrix();
+  Vec b = vec(std::vector<double>(kN, 1.0)), x = vec(std::vector<double>(kN, 7.0));
+  SaddleGuess g;
+  EXPECT_EQ(g.form(J, b, x), 1.0);
+  for (double v : values(x)) EXPECT_EQ(v, 0.0);
+  VecDestroy(&b), VecDestroy(&x), MatDestroy(&J);
+}
+
+TEST(SaddleGuess, ExactWhenTheSolutionLiesInTheSpan) {
+  Mat J = make_matrix();
+  std::vector<double> x1(kN), x2(kN), xs(kN);
+  for (int i = 0; i < kN; ++i) {
+    x1[i] = std::sin(0.3 * i + 0.1);
+    x2[i] = std::cos(0.7 * i) * (i % 3 == 0 ? 2.0 : 1.0);
+    xs[i] = 2.0 * x1[i] - 3.0 * x2[i];
+  }
+  SaddleGuess g;
+  Vec v1 = vec(x1), v2 = vec(x2), vs = vec(xs), b, x = vec(std::vector<double>(kN, 0.0));
+  g.remember(v1);
+  g.remember(v2);
+  g.remember(v1);  // a repeated direction: dropped by the eigenvalue cutoff, not a failure
+  VecDuplicate(vs, &b);
+  MatMult(J, vs, b);
+  const double rel = g.form(J, b, x);
+  EXPECT_LT(rel, 1e-12);
+  const std::vector<double> got = values(x);
+  for (int i = 0; i < kN; ++i) EXPECT_NEAR(got[i], xs[i], 1e-12);
+  // A right-hand side partly outside the span: the ratio is that of the returned iterate.
+  VecSetValue(b, 5, 10.0, ADD_VALUES);
+  VecAssemblyBegin(b);
+  VecAssemblyEnd(b);
+  const double rel2 = g.form(J, b, x);
+  Vec r;
+  VecDuplicate(b, &r);
+  MatMult(J, x, r);
+  VecAYPX(r, -1.0, b);
+  PetscReal rn = 0, bn = 0;
+  VecNorm(r, NORM_2, &rn);
+  VecNorm(b, NORM_2, &bn);
+  EXPECT_GT(rel2, 0.01);
+  EXPECT_LT(rel2, 1.0);
+  EXPECT_NEAR(rel2, rn / bn, 1e-12);
+  for (Vec* v : {&v1, &v2, &vs, &b, &x, &r}) VecDestroy(v);
+  MatDestroy(&J);
+}
+
+TEST(SaddleGuess, KeepsTheLastEightAndFallsBackToZero) {
+  Mat J = make_matrix();
+  SaddleGuess g;
+  for (int k = 0; k <= SaddleGuess::kKeep; ++k) {
+    Vec e = vec(unit(k));
+    g.remember(e);
+    VecDestroy(&e);
+  }
+  // J e_8 (kept) is reproduced exactly; J e_0 (the oldest, dropped) is not.
+  Vec e8 = vec(unit(SaddleGuess::kKeep)), b8, x8 = vec(std::vector<double>(kN, 0.0));
+  VecDuplicate(e8, &b8);
+  MatMult(J, e8, b8);
+  EXPECT_LT(g.form(J, b8, x8), 1e-12);
+  Vec e0 = vec(unit(0)), b, x = vec(std::vector<double>(kN, 0.0));
+  VecDuplicate(e0, &b);
+  MatMult(J, e0, b);
+  EXPECT_GT(g.form(J, b, x), 1e-6);
+  for (Vec* v : {&e8, &b8, &x8}) VecDestroy(v);
+  // J e_1 .. J e_8 reach rows 0 .. 9 only: a right-hand side in row 11 is not reduced, and the
+  // iterate is zero.
+  Vec far = vec(unit(11)), bf, xf = vec(std::vector<double>(kN, 3.0));
+  VecDuplicate(far, &bf);
+  VecSet(bf, 0.0);
+  VecSetValue(bf, 11, 1.0, INSERT_VALUES);
+  VecAssemblyBegin(bf);
+  VecAssemblyEnd(bf);
+  EXPECT_EQ(g.form(J, bf, xf), 1.0);
+  for (double v : values(xf)) EXPECT_EQ(v, 0.0);
+  for (Vec* v : {&e0, &b, &x, &far, &bf, &xf}) VecDestroy(v);
+  MatDestroy(&J);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ugs::mech::PetscSession petsc;
+  return RUN_ALL_TESTS();
+}
