@@ -354,9 +354,10 @@ void read_boundaries(const TomlTable& root, CaseFile& c, const Collect& ok) {
           throw t.error("group", fmt::format("boundary '{}' is already loaded by the entry at {}", g, earlier.where));
         }) && fine;
     // A group is held or loaded, not both (`free` states that a side carries no load beyond the initial state).
-    for (const auto& [list, what] : {std::pair{&c.fixed_boundaries, "fixed"}, std::pair{&c.roller_boundaries, "rollers"},
+    for (const auto& [list, name] : {std::pair{&c.fixed_boundaries, "fixed"}, std::pair{&c.roller_boundaries, "rollers"},
                                      std::pair{&c.free_boundaries, "free"}})
-      if (std::find(list->begin(), list->end(), g) != list->end())
+      if (std::find(list->begin(), list->end(), g) != list->end()) {
+        const char* what = name;  // (clang 14 cannot capture a structured binding)
         fine = ok([&] {
           throw t.error("group", fmt::format("boundary '{}' is also in [boundary] {}{} (a group is either held or loaded: "
                                              "take it out of {})", g, what,
@@ -365,6 +366,7 @@ void read_boundaries(const TomlTable& root, CaseFile& c, const Collect& ok) {
                                                  : "",
                                              what));
         }) && fine;
+      }
     if (fine) c.tractions.push_back(*spec);
   }
 }
