@@ -145,7 +145,8 @@ reference_pressure_MPa = 15.2055
   }
   csv += "\n";
   for (int p = 0; p < 3; ++p) {
-    csv += fmt::format("P{},{:.3f},{:.3f},40", p + 1, ex[p], ey[p]);
+    // The second id differs from the first only in case: each still gets its own series picture.
+    csv += fmt::format("{},{:.3f},{:.3f},40", p == 1 ? "p1" : fmt::format("P{}", p + 1), ex[p], ey[p]);
     for (std::size_t d = 0; d < dates.size(); ++d) csv += fmt::format(",{:.2f}", 0.2 * d * (p == 0 ? 1.0 : 0.3));
     csv += "\n";
   }
@@ -219,7 +220,7 @@ TEST(Report, PicturesGeoTiffsAndHeadlineNumbers) {
   // 2 phases x 3 maps, 2 x 2 sections x 3 components, 2 x 3 pool-top maps, 3 PS series, 2 fault scenarios.
   EXPECT_EQ(pngs, 6u + 12u + 6u + 3u + 2u);
   for (const char* name : {"uz_storage.png", "ux_production.png", "sec_a_a_storage_sz.png", "sec_b_b_production_sx.png",
-                           "pooltop_storage_sz.png", "series_up_p1.png", "chi_minimum_pressure.png", "chi_maximum_pressure.png"})
+                           "pooltop_storage_sz.png", "series_up_p1.png", "series_up_p1_2.png", "chi_minimum_pressure.png", "chi_maximum_pressure.png"})
     EXPECT_TRUE(fs::exists(out / name)) << name;
   // GeoTIFFs: open with the model CRS; the uplift map peaks at 3.8 mm.
   std::size_t tifs = 0;

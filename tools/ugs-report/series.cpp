@@ -54,6 +54,10 @@ void build_series(Context& c) {
     const std::optional<insar::PsData>* measured;
   };
   const Comp comps[] = {{"up", 2, &c.measured_up}, {"east", 0, &c.measured_east}};
+  // Work-file stems unique per point even when ids differ only in case or punctuation (P1, p1).
+  std::vector<std::string> ids;
+  for (const auto& p : sim.points) ids.push_back(p.point.id);
+  const auto stems = unique_slugs(ids);
   for (const auto& comp : comps) {
     if (comp.index == 0 && !c.measured_east) continue;
     for (std::size_t p = 0; p < sim.points.size(); ++p) {
@@ -81,7 +85,7 @@ void build_series(Context& c) {
         if (n) offset /= double(n);
         for (double r : resid) ss += (r - offset) * (r - offset);
       }
-      const std::string stem = fmt::format("series_{}_{}", comp.name, slug(id));
+      const std::string stem = fmt::format("series_{}_{}", comp.name, stems[p]);
       {
         CsvWriter w(c.work_file(stem + "_sim.csv"), {"date", "value_mm"});
         for (std::size_t d = 0; d < sim.dates.size(); ++d) {
