@@ -388,23 +388,36 @@ TEST(SolveFaults, RestartReproducesTheUninterruptedRunBitForBit) {
   EXPECT_FALSE(fs::exists(d / "bad.h5"));
 }
 
-// Turning-point steps on a faulted model: of the 13 dates of a storage cycle, the low (2000-10-01)
-// and the last date are stepped on; the rock is linear and the fault stays locked at this friction,
-// so the state there does not depend on the path and matches every-date stepping.
+// Turning-point steps on a faulted model: of the 13 dates of a storage cycle, the high (2000-04-01),
+// the low (2000-10-01) and the last date are stepped on; the rock is linear and the fault stays
+// locked at this friction, so the state there does not depend on the path and matches every-date
+// stepping. The high is where chi peaks (0.42, against 0.22 at the low): the continuous model's
+// rule (new lows only) missed it before session 12 and reported the wrong peak.
 TEST(SolveFaults, TurningPointStepsOnAFaultedModel) {
   Dir d("solve-faults-turning");
   ASSERT_EQ(test::run(make_case(d, "--dp 3 --friction 40 --cell 100 --months 12 --extra 'steps = \"turning-points\"'")).exit_code, 0);
   auto r = test::run(solve(d, "-o " + d / "tp.h5 -v"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("turning-point steps: 2 of 13 dates"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("turning-point steps: 3 of 13 dates"), std::string::npos) << r.err;
   replace_in(d / "case.toml", "steps = \"turning-points\"", "steps = \"every-date\"");
   r = test::run(solve(d, "-o " + d / "all.h5"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   FieldSeriesReader tp(d / "tp_faults.h5"), all(d / "all_faults.h5");
-  ASSERT_EQ(tp.steps().size(), 2u);
-  EXPECT_EQ(tp.steps()[0].date, "2000-10-01");
-  EXPECT_EQ(tp.steps()[1].date, "2001-01-01");
-  for (std::size_t s = 0; s < 2; ++s) {
+  ASSERT_EQ(tp.steps().size(), 3u);
+  EXPECT_EQ(tp.steps()[0].date, "2000-04-01");
+  EXPECT_EQ(tp.steps()[1].date, "2000-10-01");
+  EXPECT_EQ(tp.steps()[2].date, "2001-01-01");
+  // The peak of chi over every date is on a date stepped on.
+  const auto peak = [](FieldSeriesReader& f, std::size_t k) {
+    const auto chi = f.node_field(k, "chi").values;
+    return *std::max_element(chi.begin(), chi.end());
+  };
+  double peak_all = 0, peak_tp = 0;
+  for (std::size_t k = 0; k < all.steps().size(); ++k) peak_all = std::max(peak_all, peak(all, k));
+  for (std::size_t k = 0; k < tp.steps().size(); ++k) peak_tp = std::max(peak_tp, peak(tp, k));
+  EXPECT_GT(peak_all, 0.3);
+  EXPECT_NEAR(peak_tp, peak_all, 1e-6 * peak_all);
+  for (std::size_t s = 0; s < 3; ++s) {
     const std::size_t k = all.step(tp.steps()[s].date);
     const auto a = all.node_field(k, "traction").values, b = tp.node_field(s, "traction").values;
     ASSERT_EQ(a.size(), b.size());

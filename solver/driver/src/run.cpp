@@ -197,11 +197,13 @@ private:
       rule.checkpoint_every = o_.checkpoint_every.value_or(R.cs.checkpoint_every);
       rule.turning_points = R.cs.steps == "turning-points";
       rule.turning_tolerance = R.cs.turning_point_tolerance;
+      if (faulted()) rule.turning_rule = mech::TurningRule::Extremes;
       if (set_.search) rule.must_take.insert(set_.ref_time);  // the search reruns from the state there
       steps_ = plan_steps(*root_->history, R.cs, rule);
       if (rule.turning_points) {
-        log(1, fmt::format("turning-point steps: {} of {} dates (turning points of the pressure, output dates, the last date)",
-                           steps_.size(), steps_.dates_in_run));
+        log(1, fmt::format("turning-point steps: {} of {} dates ({}, output dates, the last date)", steps_.size(),
+                           steps_.dates_in_run,
+                           faulted() ? "every low and high of the pressure: the faults answer both" : "turning points of the pressure"));
         // Every output date is a step; the other dates skipped are missing from the per-step outputs
         // (an InSAR comparison would interpolate across them): say so once.
         if (steps_.size() < steps_.dates_in_run)

@@ -13,7 +13,7 @@ StepPlan plan_steps(mech::PressureHistory& history, const CaseFile& cs, const St
   const auto& steps = history.steps();
   std::vector<char> take(steps.size(), 1);
   if (rule.turning_points) {
-    take = mech::turning_points(history, rule.turning_tolerance);
+    take = mech::turning_points(history, rule.turning_tolerance, rule.turning_rule);
     std::size_t last = steps.size();
     for (std::size_t k = 0; k < steps.size(); ++k) {
       if (steps[k].time <= rule.until) last = k;

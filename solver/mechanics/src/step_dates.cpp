@@ -11,9 +11,17 @@ void TurningPoints::add(const std::vector<double>& dp) {
     secured_.assign(dp.size(), 0.0);
     low_.assign(dp.size(), 0.0);
     low_date_.assign(dp.size(), -1);
+    direction_.assign(dp.size(), 0);
   } else if (dp.size() != secured_.size()) {
     throw std::logic_error("TurningPoints::add: a date with another number of elements");
   }
+  if (rule_ == TurningRule::Extremes)
+    add_extremes(dp, k);
+  else
+    add_new_lows(dp, k);
+}
+
+void TurningPoints::add_new_lows(const std::vector<double>& dp, std::int32_t k) {
   for (std::size_t e = 0; e < dp.size(); ++e) {
     const double p = dp[e];
     if (low_date_[e] < 0) {
@@ -32,8 +40,31 @@ void TurningPoints::add(const std::vector<double>& dp) {
   }
 }
 
-std::vector<char> turning_points(PressureHistory& history, double tolerance) {
-  TurningPoints tp(tolerance);
+void TurningPoints::add_extremes(const std::vector<double>& dp, std::int32_t k) {
+  for (std::size_t e = 0; e < dp.size(); ++e) {
+    const double p = dp[e];
+    double& ext = low_[e];  // the extreme value since the last turn (0 at the start)
+    std::int8_t& dir = direction_[e];
+    if (dir == 0) {
+      if (p < ext - tolerance_ || p > ext + tolerance_) {
+        dir = p < ext ? -1 : +1;
+        ext = p;
+        low_date_[e] = k;
+      }
+    } else if (dir * (p - ext) > 0) {  // further the same way
+      ext = p;
+      low_date_[e] = k;
+    } else if (dir * (ext - p) > tolerance_) {  // back by more than the tolerance: ext was an extremum
+      turns_[low_date_[e]] = 1;
+      dir = static_cast<std::int8_t>(-dir);
+      ext = p;
+      low_date_[e] = k;
+    }
+  }
+}
+
+std::vector<char> turning_points(PressureHistory& history, double tolerance, TurningRule rule) {
+  TurningPoints tp(tolerance, rule);
   // Elements under no pressure field stay at 0 and never turn: they are left out.
   for (const auto& s : history.steps()) tp.add(history.forced_cell_dp(s.time));
   return tp.turns();

@@ -11,6 +11,7 @@
 
 #include "ugs/formats/case_file.hpp"
 #include "ugs/mechanics/pressure.hpp"
+#include "ugs/mechanics/step_dates.hpp"
 
 namespace ugs::driver {
 
@@ -28,6 +29,9 @@ struct StepRule {
   int checkpoint_every = 0;     // also a checkpoint every N steps (0: output dates only)
   bool turning_points = false;  // [solver] steps = "turning-points"
   double turning_tolerance = 0; // [Pa]
+  // New lows for the continuous model; every extremum, low or high, for a faulted one (its chi is
+  // reported on the dates stepped on: step_dates.hpp).
+  mech::TurningRule turning_rule = mech::TurningRule::NewLows;
   std::set<double> must_take;   // times stepped on whatever the rule (the scenario's reference date)
 };
 
