@@ -364,6 +364,9 @@ private:
         }
         throw ComputeError(rep.failure + saved);
       }
+      // Nothing is solved after the last step (the safe-scale search would rerun steps): its
+      // output is gathered and written without the matrix and the preconditioner.
+      if (i + 1 == n && !set_.search && !faulted()) solver_->release_linear_system();
       const auto to = Clock::now();
       const std::vector<double> u = solver_->gather_displacement();
       contact::PairResults pr;

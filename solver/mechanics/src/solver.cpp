@@ -1,6 +1,8 @@
 // The mechanics solver's public interface (ugs/mechanics/solver.hpp); its pieces: solver_impl.hpp.
 #include "ugs/mechanics/solver.hpp"
 
+#include <stdexcept>
+
 #include "solver_impl.hpp"
 
 namespace ugs::mech {
@@ -66,7 +68,21 @@ void MechanicsSolver::set_coupling(Coupling& coupling) {
 }
 
 StepReport MechanicsSolver::advance(const std::vector<double>& dp, const std::string& label) {
+  if (impl_->released) throw std::logic_error("MechanicsSolver::advance after release_linear_system");
   return impl_->advance(dp, label);
+}
+
+void MechanicsSolver::release_linear_system() {
+  Impl& s = *impl_;
+  if (s.ksp) UGS_PETSC(KSPDestroy(&s.ksp));
+  if (s.A) UGS_PETSC(MatDestroy(&s.A));
+  if (s.P) UGS_PETSC(MatDestroy(&s.P));
+  for (Vec& v : s.basis) UGS_PETSC(VecDestroy(&v));
+  for (Vec& v : s.abasis) UGS_PETSC(VecDestroy(&v));
+  s.basis.clear();
+  s.abasis.clear();
+  s.release_pattern();
+  s.released = true;
 }
 
 std::vector<double> MechanicsSolver::gather_displacement() {

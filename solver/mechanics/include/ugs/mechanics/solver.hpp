@@ -102,6 +102,11 @@ public:
   // (Pa, one value per tetrahedron in output order, read on rank 0). On failure the state is left
   // as it was before the call.
   StepReport advance(const std::vector<double>& dp, const std::string& label);
+  // Collective: frees the linear system (matrix, preconditioner, predictor basis) when no step
+  // follows: the gathers and writes of the last output date then run without it (on the
+  // 1.49M-dof box it was a third of the process at that point). advance() is refused afterwards
+  // (std::logic_error); the gathers work as before.
+  void release_linear_system();
 
   // Collective gathers to rank 0 (empty elsewhere).
   std::vector<double> gather_displacement();  // 3 per mesh node [m]
