@@ -309,17 +309,29 @@ private:
   }
 
   // Writes the restart state of the solver (and the faults) as of `date`. Collective.
+  // One field at a time, each gathered only when written: rank 0 never holds the whole state (its
+  // peak on the 1.49M-dof box was this gather).
   void save_state(const std::string& date, double time) {
-    mech::SavedState st = solver_->gather_state();
+    std::vector<double> u = solver_->gather_displacement();
     contact::FaultContact::Snapshot fs;
     if (contact_) fs = contact_->gather_snapshot();
+    std::unique_ptr<mech::StateFileWriter> w;
     mech::collective(comm_, [&] {
       if (rank_ != 0) return;
-      Root& R = *root_;
       FieldSeriesOptions vol;
       if (faulted()) vol.cell_types = {ElementType::Tetrahedron};
-      mech::write_state(*o_.state, R.mesh, date, time, st, vol);
-      if (faulted()) write_fault_state(fault_state_path(*o_.state), R.fm, date, time, fs);
+      w = std::make_unique<mech::StateFileWriter>(*o_.state, root_->mesh, date, time, std::move(u), vol);
+    });
+    for (const mech::StateField f : mech::kStateFields) {
+      std::vector<double> v = solver_->gather_state_field(f);
+      mech::collective(comm_, [&] {
+        if (rank_ == 0) w->add(f, std::move(v));
+      });
+    }
+    mech::collective(comm_, [&] {
+      if (rank_ != 0) return;
+      w->commit();
+      if (faulted()) write_fault_state(fault_state_path(*o_.state), root_->fm, date, time, fs);
     });
   }
 
@@ -354,6 +366,9 @@ private:
         }
         throw ComputeError(rep.failure + saved);
       }
+      // Nothing is solved after the last step (the safe-scale search would rerun steps): its
+      // output is gathered and written without the matrix and the preconditioner.
+      if (i + 1 == n && !set_.search && !faulted()) solver_->release_linear_system();
       const auto to = Clock::now();
       const std::vector<double> u = solver_->gather_displacement();
       contact::PairResults pr;

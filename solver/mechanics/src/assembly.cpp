@@ -155,14 +155,7 @@ void MechanicsSolver::Impl::assemble() {
     UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   }
   assembler.mat_changed = true;
-  if (!has_hyp) {
-    // The matrix can never change: the assembly arrays are not needed again.
-    std::vector<double>().swap(assembler.vals_lin);
-    std::vector<PetscInt>().swap(assembler.cols);
-    std::vector<PetscInt>().swap(assembler.rowptr);
-    std::vector<std::int64_t>().swap(assembler.node_cols);
-    std::vector<PetscInt>().swap(assembler.node_ptr);
-  }
+  if (!has_hyp) release_pattern();  // the matrix can never change
   PetscLogEventEnd(events().assembly, 0, 0, 0, 0);
 }
 
@@ -182,6 +175,14 @@ void MechanicsSolver::Impl::scatter_dummy_diag(int c) {
   for (int i = 0; i < 4; ++i)
     if (t[i] < lm.n_owned)
       for (int ci = 0; ci < 3; ++ci) assembler.diag_scale[3 * t[i] + ci] += Ke[(3 * i + ci) * 12 + 3 * i + ci];
+}
+
+void MechanicsSolver::Impl::release_pattern() {
+  std::vector<double>().swap(assembler.vals_lin);
+  std::vector<PetscInt>().swap(assembler.cols);
+  std::vector<PetscInt>().swap(assembler.rowptr);
+  std::vector<std::int64_t>().swap(assembler.node_cols);
+  std::vector<PetscInt>().swap(assembler.node_ptr);
 }
 
 void MechanicsSolver::Impl::upload_linear() {
@@ -204,6 +205,9 @@ void MechanicsSolver::Impl::upload_linear() {
         UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals_lin.data() + assembler.rowptr[i],
                                INSERT_VALUES));
       }
+      // hypre holds the values now, and a linear matrix never changes: the arrays go before
+      // hypre's assembly, which needs as much again (the peak of the process).
+      release_pattern();
       UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
       UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     } else {

@@ -1,6 +1,8 @@
 // The mechanics solver's public interface (ugs/mechanics/solver.hpp); its pieces: solver_impl.hpp.
 #include "ugs/mechanics/solver.hpp"
 
+#include <stdexcept>
+
 #include "solver_impl.hpp"
 
 namespace ugs::mech {
@@ -66,7 +68,21 @@ void MechanicsSolver::set_coupling(Coupling& coupling) {
 }
 
 StepReport MechanicsSolver::advance(const std::vector<double>& dp, const std::string& label) {
+  if (impl_->released) throw std::logic_error("MechanicsSolver::advance after release_linear_system");
   return impl_->advance(dp, label);
+}
+
+void MechanicsSolver::release_linear_system() {
+  Impl& s = *impl_;
+  if (s.ksp) UGS_PETSC(KSPDestroy(&s.ksp));
+  if (s.A) UGS_PETSC(MatDestroy(&s.A));
+  if (s.P) UGS_PETSC(MatDestroy(&s.P));
+  for (Vec& v : s.basis) UGS_PETSC(VecDestroy(&v));
+  for (Vec& v : s.abasis) UGS_PETSC(VecDestroy(&v));
+  s.basis.clear();
+  s.abasis.clear();
+  s.release_pattern();
+  s.released = true;
 }
 
 std::vector<double> MechanicsSolver::gather_displacement() {
@@ -148,28 +164,37 @@ std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
 }
 
 SavedState MechanicsSolver::gather_state() {
+  SavedState st;
+  st.u = gather_displacement();
+  st.eps = gather_state_field(StateField::Eps);
+  st.dsig = gather_state_field(StateField::Dsig);
+  st.hypo = gather_state_field(StateField::Hypo);
+  st.dp = gather_state_field(StateField::Dp);
+  return st;
+}
+
+std::vector<double> MechanicsSolver::gather_state_field(StateField field) {
   Impl& s = *impl_;
   const LocalMesh& lm = s.lm;
-  SavedState st;
-  st.u = s.gather_nodes(s.owned_u(), 3);
-  std::vector<double> eps, dsig, hypo, dp;
+  const int k = field == StateField::Dp ? 1 : field == StateField::Hypo ? 4 : 6;
+  std::vector<double> values;
   for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
     if (!lm.cell_owned[ci]) continue;
-    dp.push_back(s.dp_cell[ci]);
     const int h = s.hyp.of_cell[ci];
     const fem::PointState ps = h >= 0 ? s.hyp.committed[h] : fem::PointState{};
-    eps.insert(eps.end(), ps.eps.begin(), ps.eps.end());
-    dsig.insert(dsig.end(), ps.dsig.begin(), ps.dsig.end());
-    hypo.push_back(ps.hypo.sigma_max);
-    hypo.push_back(ps.hypo.sigma_inv);
-    hypo.push_back(ps.hypo.direction);
-    hypo.push_back(h >= 0 ? s.hyp.last_ddp[h] : 0);
+    switch (field) {
+      case StateField::Dp: values.push_back(s.dp_cell[ci]); break;
+      case StateField::Eps: values.insert(values.end(), ps.eps.begin(), ps.eps.end()); break;
+      case StateField::Dsig: values.insert(values.end(), ps.dsig.begin(), ps.dsig.end()); break;
+      case StateField::Hypo:
+        values.push_back(ps.hypo.sigma_max);
+        values.push_back(ps.hypo.sigma_inv);
+        values.push_back(ps.hypo.direction);
+        values.push_back(h >= 0 ? s.hyp.last_ddp[h] : 0);
+        break;
+    }
   }
-  st.eps = s.gather_cells_k(eps, 6);
-  st.dsig = s.gather_cells_k(dsig, 6);
-  st.hypo = s.gather_cells_k(hypo, 4);
-  st.dp = s.gather_cells_k(dp, 1);
-  return st;
+  return s.gather_cells_k(values, k);
 }
 
 void MechanicsSolver::restore_state(const SavedState& st) {

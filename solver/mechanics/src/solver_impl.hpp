@@ -147,6 +147,7 @@ struct MechanicsSolver::Impl {
   Vec aw = nullptr;
   // Extra unknowns solved with u (fault contact, coupling.hpp); null for the continuous model.
   Coupling* coupling = nullptr;
+  bool released = false;  // release_linear_system() was called: no more steps
 
   ~Impl() {
     if (ksp) KSPDestroy(&ksp);
@@ -252,6 +253,8 @@ struct MechanicsSolver::Impl {
 
   // A from the elastic part: created with it (first call), or its rows reset to it.
   void upload_linear();
+  // Frees the pattern and the elastic values once nothing will change A again (no hypo-plastic element).
+  void release_pattern();
   // Adds an element's stiffness (or its change) into A as scatter() would into a CSR array:
   // owned rows, no prescribed row or column; the same sums in the same order, so the same bits.
   void add_to_matrix(int c, const std::array<double, 144>& Ke);

@@ -1,6 +1,8 @@
 #include "ugs/mechanics/state_file.hpp"
 
 #include <cmath>
+#include <iterator>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -10,12 +12,48 @@
 
 namespace ugs::mech {
 
+namespace {
+
+const char* state_field_name(StateField f) {
+  switch (f) {
+    case StateField::Dp: return "dp";
+    case StateField::Eps: return "eps";
+    case StateField::Dsig: return "dsig";
+    case StateField::Hypo: return "hypo";
+  }
+  return "";
+}
+
+int state_field_components(StateField f) { return f == StateField::Dp ? 1 : f == StateField::Hypo ? 4 : 6; }
+
+}  // namespace
+
+StateFileWriter::StateFileWriter(const std::string& path, const Mesh& mesh, const std::string& date, double time,
+                                 std::vector<double> u, const FieldSeriesOptions& options)
+    : w_(path, mesh, options) {
+  const Field nodes[] = {{"u", 3, std::move(u)}};
+  w_.add_step(date, time, nodes);
+}
+
+void StateFileWriter::add(StateField field, std::vector<double> values) {
+  if (next_ >= std::size(kStateFields) || kStateFields[next_] != field)
+    throw std::logic_error("StateFileWriter: state fields added out of order");
+  ++next_;
+  w_.add_cell_field({state_field_name(field), state_field_components(field), std::move(values)});
+}
+
+void StateFileWriter::commit() {
+  if (next_ != std::size(kStateFields)) throw std::logic_error("StateFileWriter: a state field is missing");
+  w_.commit();
+}
+
 void write_state(const std::string& path, const Mesh& mesh, const std::string& date, double time, const SavedState& s,
                  const FieldSeriesOptions& options) {
-  FieldSeriesWriter w(path, mesh, options);
-  const Field nodes[] = {{"u", 3, s.u}};
-  const Field cells[] = {{"dp", 1, s.dp}, {"eps", 6, s.eps}, {"dsig", 6, s.dsig}, {"hypo", 4, s.hypo}};
-  w.add_step(date, time, nodes, cells);
+  StateFileWriter w(path, mesh, date, time, s.u, options);
+  w.add(StateField::Dp, s.dp);
+  w.add(StateField::Eps, s.eps);
+  w.add(StateField::Dsig, s.dsig);
+  w.add(StateField::Hypo, s.hypo);
   w.commit();
 }
 

@@ -1,6 +1,8 @@
 // PETSc (and MPI) for the lifetime of a tool or test: initialises with the PETSc options given
 // (argv after "--" on the ugs-solve command line; -log_view and every -ksp_/-pc_ option work),
 // installs the error handler that turns PETSc errors into ugs::ComputeError, finalises at the end.
+// Restores glibc malloc's defaults that a library loaded with PETSc turned off (petsc_session.cpp),
+// so that memory freed is returned to the system.
 #pragma once
 #include <string>
 #include <vector>

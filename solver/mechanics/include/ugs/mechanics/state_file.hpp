@@ -11,6 +11,24 @@
 
 namespace ugs::mech {
 
+// The cell fields of a state file, in the file's order.
+inline constexpr StateField kStateFields[] = {StateField::Dp, StateField::Eps, StateField::Dsig, StateField::Hypo};
+
+// A state file written one field at a time (each gathered only when written: rank 0 holds one cell
+// field, not all of SavedState). Give add() every field of kStateFields in that order, then commit();
+// the bytes are write_state()'s. Without commit() nothing is left behind.
+class StateFileWriter {
+public:
+  StateFileWriter(const std::string& path, const Mesh& mesh, const std::string& date, double time,
+                  std::vector<double> u, const FieldSeriesOptions& options = {});
+  void add(StateField field, std::vector<double> values);
+  void commit();
+
+private:
+  FieldSeriesWriter w_;
+  std::size_t next_ = 0;
+};
+
 void write_state(const std::string& path, const Mesh& mesh, const std::string& date, double time, const SavedState& s,
                  const FieldSeriesOptions& options = {});
 // InputError if the file is not a state of this mesh.
