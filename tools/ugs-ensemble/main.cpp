@@ -182,6 +182,7 @@ int main(int argc, char** argv) {
   // The library names these settings in words; the messages show the flags.
   tool.name_setting("solver command", "--solver-command");
   tool.name_setting("solver mesh", "--mesh");
+  tool.name_setting("metric phase", "--phase");
   return tool.run(argc, argv, [&] {
     o.mode = mode == "collect" ? Mode::collect : Mode::run;
     o.emit = emit == "make" ? Emit::make : emit == "slurm" ? Emit::slurm : Emit::none;
