@@ -4,6 +4,7 @@
 
 #include "run_tool.hpp"
 #include "ugs/ensemble/design.hpp"
+#include "ugs/ensemble/metrics.hpp"
 #include "ugs/ensemble/spec.hpp"
 #include "ugs/formats/error.hpp"
 
@@ -117,4 +118,21 @@ TEST(EnsembleDesign, SizesBoundsAndSameSeedSameMembers) {
     EXPECT_EQ(s.x[24 + k][1], s.x[8 + k][1]);
     EXPECT_EQ(s.x[24 + k][0], s.x[k][0]);
   }
+}
+
+// The library names the setting in words (ugs-ensemble's main maps "metric phase" to --phase).
+TEST(EnsemblePhase, BadPhaseNamesTheSettingInWords) {
+  const auto message = [](const std::string& text) {
+    try {
+      ugs::ensemble::parse_phase(text);
+    } catch (const ugs::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("storage"), "metric phase storage: expected NAME=START/END, e.g. storage=2015-05-01/2015-11-01");
+  EXPECT_EQ(message("storage=2015-13-01/2015-11-01"), "metric phase storage=2015-13-01/2015-11-01: dates must be ISO 8601 (YYYY-MM-DD)");
+  EXPECT_EQ(message("storage=2015-11-01/2015-05-01"), "metric phase storage=2015-11-01/2015-05-01: the start must come before the end");
+  const auto p = ugs::ensemble::parse_phase("storage=2015-05-01/2015-11-01");
+  EXPECT_EQ(p.name, "storage");
 }

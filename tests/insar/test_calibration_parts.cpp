@@ -11,6 +11,7 @@
 #include "ugs/insar/case_params.hpp"
 #include "ugs/insar/misfit.hpp"
 #include "ugs/insar/optimizer.hpp"
+#include "ugs/insar/solver_runs.hpp"
 
 using namespace ugs;
 using namespace ugs::insar;
@@ -135,4 +136,24 @@ TEST(Brent, FindsTheMinimumOfAParabolaAndOfAnAsymmetricFunction) {
   auto h = [](double x) { return x; };
   const auto b = brent_minimize(h, 0, 1, 0.5, 0.5, 1e-4, 100);
   EXPECT_LT(b.x, 1e-3);
+}
+
+// Library messages name the settings in words; each tool's main maps them to its flags
+// (Tool::name_setting; CalibrateCli.BadInputs checks the tool's line).
+TEST(SolverCommand, ErrorsNameTheSettingInWordsNotAFlag) {
+  using ugs::insar::check_command_template;
+  const auto message = [](const std::string& cmd, bool have_mesh) {
+    try {
+      check_command_template(cmd, have_mesh);
+    } catch (const ugs::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("run {case}", false).rfind("solver command: the command must contain {case}", 0), 0u);
+  EXPECT_EQ(message("run {case} {out} {results}", false), "solver command: unknown placeholder {results} (known: {case} {out} {mesh} {dir})");
+  EXPECT_EQ(message("run {case} {out} {mesh}", false), "solver command: uses {mesh} but no solver mesh was given");
+  EXPECT_EQ(message("run {case} {out} {mesh}", true), "");
+  for (const auto& cmd : {"run {case}", "run {case} {out} {x}", "run {case} {out} {mesh}"})
+    EXPECT_EQ(message(cmd, false).find("--"), std::string::npos) << cmd;
 }

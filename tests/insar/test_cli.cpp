@@ -187,6 +187,9 @@ TEST(CalibrateCli, BadInputs) {
   r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
                 "up.csv --solver-command 'x {case} {out} {results}' --param material.pool_c.c_R=2:6 -o " + d + "out");
   EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "unknown placeholder {results}")) << r.err;
+  r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
+                "up.csv --solver-command 'x {case} {out} {mesh}' --param material.pool_c.c_R=2:6 -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "--solver-command: uses {mesh} but no solver mesh (--mesh) was given")) << r.err;
   // A solver that fails: exit 1, naming the evaluation and the log (the shell's ${VAR} is left alone).
   r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
                 "up.csv --solver-command 'V=diverged; echo ${V}; exit 3; {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");

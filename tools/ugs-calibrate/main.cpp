@@ -93,6 +93,11 @@ int main(int argc, char** argv) {
   app.add_option("--xtol", o.xtol, "Stop when steps are below this fraction of each range")->capture_default_str();
   app.add_option("--max-evals", o.max_evals, "Evaluation budget (scan included)")->capture_default_str()->check(CLI::Range(1, 100000));
   std::string& output = tool.add_output("calibration", "Output folder");
+  // The library names these settings in words; the messages show the flags.
+  tool.name_setting("solver command", "--solver-command");
+  tool.name_setting("solver mesh", "--mesh");
+  tool.name_setting("parameter to calibrate", "--param");
+  tool.name_setting("scan values per parameter", "--scan");
   return tool.run(argc, argv, [&] {
     // 1. Numeric options, then the parameters: every path must exist in the case, and both bounds
     // must give a valid case.

@@ -179,6 +179,10 @@ int main(int argc, char** argv) {
   app.add_option("--id-column", o.id_column, "Column holding the PS id (default: pid)");
   app.add_option("--field", o.field, "Displacement node field in the results (default: u, or u_mm)");
   std::string& output = tool.add_output("ensemble", "Output folder (--emit: the Makefile or script)");
+  // The library names these settings in words; the messages show the flags.
+  tool.name_setting("solver command", "--solver-command");
+  tool.name_setting("solver mesh", "--mesh");
+  tool.name_setting("metric phase", "--phase");
   return tool.run(argc, argv, [&] {
     o.mode = mode == "collect" ? Mode::collect : Mode::run;
     o.emit = emit == "make" ? Emit::make : emit == "slurm" ? Emit::slurm : Emit::none;

@@ -133,6 +133,8 @@ int main(int argc, char** argv) {
   app.add_option("--height", o.height, "PNG height in pixels")->capture_default_str()->check(CLI::Range(200, 8000));
   app.add_flag("--keep-work", o.keep_work, "Keep the CSV/NPY files handed to plots.py (work/ in the output)");
   std::string& output = tool.add_output("report", "Output folder");
+  // The library names this setting in words; the messages show the flag.
+  tool.name_setting("raster cell size", "--raster-cell");
   return tool.run(argc, argv, [&] {
     // Numeric options: finite and in range, before anything is read.
     insar::check_option("--reference-pressure-MPa", o.reference_pressure_MPa, 0, std::numeric_limits<double>::max());

@@ -21,10 +21,10 @@ namespace fs = std::filesystem;
 Phase parse_phase(const std::string& text) {
   const auto eq = text.find('='), slash = text.find('/');
   if (eq == std::string::npos || eq == 0 || slash == std::string::npos || slash < eq)
-    throw InputError("--phase " + text, "expected NAME=START/END, e.g. storage=2015-05-01/2015-11-01");
+    throw InputError("metric phase " + text, "expected NAME=START/END, e.g. storage=2015-05-01/2015-11-01");
   const auto a = parse_iso_date(text.substr(eq + 1, slash - eq - 1)), b = parse_iso_date(text.substr(slash + 1));
-  if (!a || !b) throw InputError("--phase " + text, "dates must be ISO 8601 (YYYY-MM-DD)");
-  if (*a >= *b) throw InputError("--phase " + text, "the start must come before the end");
+  if (!a || !b) throw InputError("metric phase " + text, "dates must be ISO 8601 (YYYY-MM-DD)");
+  if (*a >= *b) throw InputError("metric phase " + text, "the start must come before the end");
   return {text.substr(0, eq), *a, *b};
 }
 

@@ -92,7 +92,7 @@ std::vector<double> natural(const std::vector<ParameterSpec>& params, const std:
 
 OptimizerResult optimize(Evaluator& ev, const std::vector<ParameterSpec>& params, const OptimizerOptions& o) {
   const std::size_t n = params.size();
-  if (n == 0) throw InputError("", "no parameter to calibrate (give --param)");
+  if (n == 0) throw InputError("", "no parameter to calibrate was given");
   OptimizerResult res;
   int scan = o.scan < 0 ? (n == 1 ? 5 : 3) : o.scan;
   if (scan == 1) scan = 0;
@@ -102,7 +102,7 @@ OptimizerResult optimize(Evaluator& ev, const std::vector<ParameterSpec>& params
   if (scan >= 2) {
     std::size_t total = 1;
     for (std::size_t i = 0; i < n; ++i) total *= static_cast<std::size_t>(scan);
-    if (total > 100000) throw InputError("--scan", fmt::format("{}^{} grid points is too many", scan, n));
+    if (total > 100000) throw InputError("scan values per parameter", fmt::format("{}^{} grid points is too many", scan, n));
     std::vector<std::vector<double>> grid;
     for (std::size_t g = 0; g < total; ++g) {
       std::vector<double> s(n);

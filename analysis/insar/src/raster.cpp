@@ -22,7 +22,7 @@ GridSpec grid_for_extent(const std::array<double, 4>& e, double cell) {
     const double p = std::pow(10.0, std::floor(std::log10(raw)));
     cell = raw <= p ? p : raw <= 2 * p ? 2 * p : raw <= 5 * p ? 5 * p : 10 * p;
   }
-  if (!std::isfinite(cell)) throw InputError("--raster-cell", fmt::format("{} (expected a finite cell size in m)", cell));
+  if (!std::isfinite(cell)) throw InputError("raster cell size", fmt::format("{} (expected a finite cell size in m)", cell));
   GridSpec g;
   g.cell = cell;
   g.x0 = std::floor(e[0] / cell) * cell;
@@ -30,7 +30,7 @@ GridSpec grid_for_extent(const std::array<double, 4>& e, double cell) {
   // Counted in double first: a tiny cell must not overflow the int.
   const double nx = std::ceil((e[1] - g.x0) / cell - 1e-9), ny = std::ceil((g.y0 - e[2]) / cell - 1e-9);
   if (!(nx * ny <= 1e8))
-    throw InputError("--raster-cell", fmt::format("{} m gives {:.3g} x {:.3g} cells, too many (at most 1e8)", cell, nx, ny));
+    throw InputError("raster cell size", fmt::format("{} m gives {:.3g} x {:.3g} cells, too many (at most 1e8)", cell, nx, ny));
   g.nx = static_cast<int>(nx);
   g.ny = static_cast<int>(ny);
   return g;

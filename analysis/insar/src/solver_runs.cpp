@@ -155,17 +155,17 @@ std::vector<std::string> files_named_in_command(const std::string& cmd) {
 
 void check_command_template(const std::string& cmd, bool have_mesh) {
   if (cmd.find("{case}") == std::string::npos || cmd.find("{out}") == std::string::npos)
-    throw InputError("--solver-command", "the command must contain {case} (the modified case file) and {out} (the results "
+    throw InputError("solver command", "the command must contain {case} (the modified case file) and {out} (the results "
                                          "file it must write)");
   static const std::regex placeholder(R"(\{([A-Za-z_]+)\})");
   for (auto it = std::sregex_iterator(cmd.begin(), cmd.end(), placeholder); it != std::sregex_iterator(); ++it) {
     if (it->position() > 0 && cmd[static_cast<std::size_t>(it->position()) - 1] == '$') continue;  // ${VAR} is the shell's
     const std::string name = (*it)[1];
     if (name != "case" && name != "out" && name != "mesh" && name != "dir")
-      throw InputError("--solver-command", fmt::format("unknown placeholder {{{}}} (known: {{case}} {{out}} {{mesh}} {{dir}})", name));
+      throw InputError("solver command", fmt::format("unknown placeholder {{{}}} (known: {{case}} {{out}} {{mesh}} {{dir}})", name));
   }
   if (cmd.find("{mesh}") != std::string::npos && !have_mesh)
-    throw InputError("--solver-command", "uses {mesh} but no --mesh was given");
+    throw InputError("solver command", "uses {mesh} but no solver mesh was given");
 }
 
 SolverRuns::SolverRuns(SolverRunSetup setup) : setup_(std::move(setup)) {

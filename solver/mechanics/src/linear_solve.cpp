@@ -116,7 +116,7 @@ void MechanicsSolver::Impl::assemble_symmetric_p() {
 }
 
 void MechanicsSolver::Impl::rebuild_pc() {
-  if (reuse.valid) refresh_basis();
+  if (reuse.valid) newton.predictor.refresh(A);
   reuse.phase = assembler.assembled_phase;
   if (separate_p()) {
     if (opt.linear == LinearSolver::Cholmod) assemble_symmetric_p();

@@ -1,4 +1,4 @@
-// One load step: Newton with the knee holds, sub-stepping, commit (solver_impl.hpp, docs/mechanics.md).
+// Newton: the iteration of one (sub-)step with the knee holds (solver_impl.hpp, docs/mechanics.md).
 #include "solver_impl.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
 
@@ -21,15 +21,15 @@ bool inexact_newton() {
 
 }  // namespace
 
-bool MechanicsSolver::Impl::branches_moved() const {
-  long long mine = 0, all = 0;
-  for (std::size_t h = 0; h < assembler.assembled_phase.size(); ++h) mine += tangent_differs(h, assembler.assembled_phase[h], reuse.phase[h]);
-  MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
-  return static_cast<double>(all) > 0.05 * static_cast<double>(hyp.n_global);
-}
-
-bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepReport& rep, std::string& why) {
-  external_force(dp_target);
+bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std::string& why) {
+  const SolverOptions& opt = in_.opt;
+  const LocalMesh& lm = in_.lm;
+  const std::vector<double>& dp_cell = in_.dp_cell;
+  Coupling* const coupling = in_.coupling;
+  const bool has_hyp = in_.has_hyp;
+  HypoStateStore& hyp = out_.hyp;
+  const Vec u = out_.u, du = out_.du;
+  op_.external_force(dp_target);
   for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
     // First tangent: the element keeps its direction unless its pressure change reverses.
     const double d = dp_target[hyp.cells[h]] - dp_cell[hyp.cells[h]];
@@ -39,9 +39,9 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     hyp.flips[h] = 0;
     hyp.hold[h] = fem::Hold::None;
   }
-  UGS_PETSC(VecCopy(u, u_save));
+  UGS_PETSC(VecCopy(u, out_.u_save));
   rep.residuals.clear();
-  const double r0 = residual();
+  const double r0 = op_.residual();
   rep.residuals.push_back(1.0);
   if (r0 == 0) return true;
   double rk = r0, rprev = r0;
@@ -52,14 +52,14 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     const fem::InversionRule rule = lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule;
     nonlinear = (hyp.guess[h] != hyp.committed[h].hypo.direction &&
                  (rule != fem::InversionRule::SigmaMax || hyp.committed_phase[h] == fem::LoadingPhase::Virgin)) ||
-                (hyp.guess[h] > 0 && start_sigma(static_cast<int>(h)) >= hyp.committed[h].hypo.sigma_max * (1 - 1e-9)) ||
+                (hyp.guess[h] > 0 && hyp.start_sigma(static_cast<int>(h), in_.s0) >= hyp.committed[h].hypo.sigma_max * (1 - 1e-9)) ||
                 rule == fem::InversionRule::StressDependent;
   }
   int any_nonlinear = 0;
   MPI_Allreduce(&nonlinear, &any_nonlinear, 1, MPI_INT, MPI_MAX, lm.comm);
   double eta = any_nonlinear || coupling ? 1e-4 : 0.0;
   for (int k = 1; k <= opt.max_newton; ++k) {
-    assemble();
+    op_.assemble();
     // Inexact Newton (Eisenstat-Walker): no sharper than the nonlinearity warrants, but never
     // looser than what reaches the target in one more iteration of a linear problem. Not with
     // hypo-plastic elements: which elements are held at their knee, and on which side, is decided
@@ -70,21 +70,21 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     // reuse, the predictor or a coupling (a locked fault) (docs/mechanics.md "Inexact Newton").
     const double floor_rtol = 0.5 * opt.tolerance * r0 / rk;
     const double rtol = std::min(0.5, has_hyp && !inexact_newton() ? floor_rtol : std::max(floor_rtol, eta));
-    const int setups_before = reuse.setups;
-    const bool guess = !coupling && k == 1 && predict();
-    SolveResult s;
+    const int setups_before = in_.reuse.setups;
+    const bool guess = !coupling && k == 1 && predictor.predict(in_.A, in_.r, du);
+    LinearSolveResult s;
     if (coupling) {
-      const CouplingSolve cs = coupling->solve(A, r, du, rtol);
+      const CouplingSolve cs = coupling->solve(in_.A, in_.r, du, rtol);
       s.iterations = cs.iterations;
       if (!cs.ok) {
         why = cs.failure + coupling->diagnosis();
         return false;
       }
     } else {
-      s = solve(rtol, guess);
+      s = op_.solve(rtol, guess);
     }
     rep.linear_iterations += s.iterations;
-    rep.preconditioner_setups += reuse.setups - setups_before;
+    rep.preconditioner_setups += in_.reuse.setups - setups_before;
     ++rep.newton_iterations;
     if (s.reason < 0 && !(s.reason == KSP_DIVERGED_ITS && s.reduction < 0.5)) {
       why = fmt::format("linear solver failed ({}) after {} iterations", KSPConvergedReasons[s.reason], s.iterations);
@@ -94,7 +94,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
     rprev = rk;
     std::vector<int> before(hyp.cells.size());
     for (std::size_t h = 0; h < hyp.cells.size(); ++h) before[h] = static_cast<int>(hyp.trial[h].phase);
-    rk = residual();
+    rk = op_.residual();
     track_branches(k);
     long long moved = 0, moved_all = 0;
     for (std::size_t h = 0; h < hyp.cells.size(); ++h) moved += tangent_moved(h, before[h]);
@@ -110,6 +110,7 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
       }
       MPI_Allreduce(MPI_IN_PLACE, c, 4, MPI_LONG_LONG, MPI_SUM, lm.comm);
       // The predictor (first iteration): the residual its prediction left, relative to r_0.
+      const double predicted = predictor.predicted();
       const std::string pred = k != 1 || coupling || predicted < 0 ? ""
                                : std::isfinite(predicted)          ? fmt::format(", predictor {:.3e}", predicted)
                                                                    : std::string(", predictor dropped");
@@ -151,16 +152,14 @@ bool MechanicsSolver::Impl::newton(const std::vector<double>& dp_target, StepRep
   return false;
 }
 
-bool MechanicsSolver::Impl::tangent_differs(std::size_t h, int phase_a, int phase_b) const {
-  if (phase_a == phase_b) return false;
-  const auto unload_reload = [](int p) {
-    return p == static_cast<int>(fem::LoadingPhase::Unloading) || p == static_cast<int>(fem::LoadingPhase::Reloading);
-  };
-  return !(unload_reload(phase_a) && unload_reload(phase_b) &&
-           lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule == fem::InversionRule::SigmaMax);
+bool Newton::tangent_moved(std::size_t h, int phase_before) const {
+  const HypoStateStore& hyp = out_.hyp;
+  return tangent_differs(in_.lm.materials[in_.lm.cell_material[hyp.cells[h]]].hypo.rule, phase_before,
+                         static_cast<int>(hyp.trial[h].phase));
 }
 
-void MechanicsSolver::Impl::track_branches(int k) {
+void Newton::track_branches(int k) {
+  HypoStateStore& hyp = out_.hyp;
   const int enough = k >= kHoldOnFirstChangeFrom ? 1 : 2;
   for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
     const auto p = static_cast<std::int8_t>(hyp.trial[h].phase);
@@ -172,7 +171,9 @@ void MechanicsSolver::Impl::track_branches(int k) {
   }
 }
 
-double MechanicsSolver::Impl::held_off_branch() {
+double Newton::held_off_branch() const {
+  const HypoStateStore& hyp = out_.hyp;
+  const LocalMesh& lm = in_.lm;
   double mine = 0;
   for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
     if (hyp.hold[h] == fem::Hold::None) continue;
@@ -185,7 +186,7 @@ double MechanicsSolver::Impl::held_off_branch() {
       Vec6 ds;
       for (int i = 0; i < 6; ++i) ds[i] = delta * m.Dhat[6 * i + ZZ] * 1e6 / hyp.trial[h].c_tangent;
       double fe[12] = {};
-      fem::tet4_add_internal_force(geo[c], ds, fe);
+      fem::tet4_add_internal_force(in_.geo[c], ds, fe);
       double n2 = 0;
       for (double f : fe) n2 += f * f;
       mine += std::sqrt(n2);
@@ -194,93 +195,6 @@ double MechanicsSolver::Impl::held_off_branch() {
   double all = 0;
   MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, lm.comm);
   return all;
-}
-
-void MechanicsSolver::Impl::commit(const std::vector<double>& dp_target) {
-  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
-    const double d = dp_target[hyp.cells[h]] - dp_cell[hyp.cells[h]];
-    if (d != 0) hyp.last_ddp[h] = d < 0 ? -1 : +1;
-    hyp.committed[h].eps = hyp.trial_eps[h];
-    hyp.committed[h].dsig = hyp.trial[h].dsig;
-    hyp.committed[h].hypo = hyp.trial[h].hypo;
-    hyp.committed_phase[h] = hyp.trial[h].phase;
-    hyp.committed_c[h] = hyp.trial[h].c_tangent;
-  }
-  dp_cell = dp_target;
-}
-
-void MechanicsSolver::Impl::restore_u() {
-  UGS_PETSC(VecCopy(u_save, u));
-  UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
-  UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
-}
-
-StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, const std::string& label) {
-  const auto t0 = std::chrono::steady_clock::now();
-  StepReport rep;
-  rep.substeps = 0;
-  // Every rank needs the pressure change of its elements.
-  std::vector<double> dp_all;
-  std::uint64_t n = lm.rank == 0 ? dp_rank0.size() : 0;
-  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, lm.comm);
-  if (n != static_cast<std::uint64_t>(lm.n_global_cells))
-    throw std::logic_error("MechanicsSolver::advance: pressure vector of wrong size");
-  dp_all.resize(n);
-  if (lm.rank == 0) std::copy(dp_rank0.begin(), dp_rank0.end(), dp_all.begin());
-  MPI_Bcast(dp_all.data(), static_cast<int>(n), MPI_DOUBLE, 0, lm.comm);
-  std::vector<double> target(lm.n_cells());
-  for (std::size_t c = 0; c < lm.n_cells(); ++c) target[c] = dp_all[lm.cell_index[c]];
-  dp_all = {};
-
-  // A failed step leaves the state of the previous one (committed sub-steps are undone).
-  const std::vector<double> start = dp_cell;
-  const auto committed_start = hyp.committed;
-  const auto phase_start = hyp.committed_phase;
-  const auto c_start = hyp.committed_c;
-  const auto last_ddp_start = hyp.last_ddp;  // the direction of the next step's first tangent
-  UGS_PETSC(VecCopy(u, u_step));
-  if (coupling) coupling->begin_step();
-  double done = 0, h = 1;
-  const double h_min = 1.0 / opt.max_substeps;
-  std::vector<double> dp_b(lm.n_cells());
-  while (done < 1) {
-    const double b = std::min(1.0, done + h);
-    for (std::size_t k = 0; k < dp_b.size(); ++k) dp_b[k] = b == 1.0 ? target[k] : start[k] + b * (target[k] - start[k]);
-    std::string why;
-    if (coupling) coupling->begin_substep(b);
-    if (newton(dp_b, rep, why)) {
-      if (coupling) coupling->commit();
-      commit(dp_b);
-      remember_increment_from(u_save);
-      done = b;
-      ++rep.substeps;
-      continue;
-    }
-    restore_u();
-    if (coupling) coupling->revert_substep();
-    if (rep.substep_reason.empty())
-      rep.substep_reason = fmt::format("{} (relative residuals {})", why, history_text(rep.residuals));
-    if (h / 2 < h_min * (1 - 1e-12) || (!has_hyp && !coupling)) {
-      if (coupling) coupling->revert_step();
-      hyp.committed = committed_start;
-      hyp.committed_phase = phase_start;
-      hyp.committed_c = c_start;
-      hyp.last_ddp = last_ddp_start;
-      dp_cell = start;
-      UGS_PETSC(VecCopy(u_step, u));
-      UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
-      UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
-      rep.converged = false;
-      rep.failure = fmt::format("{}: {} (relative residuals {}){}", label, why, history_text(rep.residuals),
-                                h < 1 ? fmt::format("; sub-step of 1/{:.0f} of the step", 1 / h) : "");
-      rep.seconds = seconds_since(t0);
-      return rep;
-    }
-    h /= 2;
-  }
-  rep.converged = true;
-  rep.seconds = seconds_since(t0);
-  return rep;
 }
 
 }  // namespace ugs::mech

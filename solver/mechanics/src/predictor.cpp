@@ -4,56 +4,66 @@
 
 namespace ugs::mech {
 
-double MechanicsSolver::Impl::projection_residual() {
-  const int m = static_cast<int>(basis.size());
+Predictor::~Predictor() {
+  if (aw_) VecDestroy(&aw_);
+  for (Vec& v : basis_) VecDestroy(&v);
+  for (Vec& v : abasis_) VecDestroy(&v);
+}
+
+void Predictor::setup(Vec u) {
+  like_ = u;
+  UGS_PETSC(VecDuplicate(u, &aw_));
+}
+
+double Predictor::projection_residual(Mat A, Vec r, Vec du) {
+  const int m = static_cast<int>(basis_.size());
   std::vector<PetscScalar> c(m);
-  UGS_PETSC(VecMDot(r, m, basis.data(), c.data()));
+  UGS_PETSC(VecMDot(r, m, basis_.data(), c.data()));
   UGS_PETSC(VecSet(du, 0.0));
-  UGS_PETSC(VecMAXPY(du, m, c.data(), basis.data()));
+  UGS_PETSC(VecMAXPY(du, m, c.data(), basis_.data()));
   // The residual the first Krylov iterate starts from, r - A du0, relative to r.
   PetscReal rn = 0, pn = 0;
-  UGS_PETSC(MatMult(A, du, aw));
-  UGS_PETSC(VecAYPX(aw, -1.0, r));
+  UGS_PETSC(MatMult(A, du, aw_));
+  UGS_PETSC(VecAYPX(aw_, -1.0, r));
   UGS_PETSC(VecNorm(r, NORM_2, &rn));
-  UGS_PETSC(VecNorm(aw, NORM_2, &pn));
+  UGS_PETSC(VecNorm(aw_, NORM_2, &pn));
   return rn > 0 ? pn / rn : 0.0;
 }
 
-bool MechanicsSolver::Impl::predict() {
-  predicted = -1;
-  if (basis.empty()) return false;
+bool Predictor::predict(Mat A, Vec r, Vec du) {
+  predicted_ = -1;
+  if (basis_.empty()) return false;
   PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
-  if (!aw) UGS_PETSC(VecDuplicate(u, &aw));
   // W is A-orthonormal for the matrix of the last preconditioner setup. When the matrix has
   // changed much since (elements reloading past sigma_max soften by c_R), the projection can be
   // far off: on the V1 column, unloading after the reload past sigma_max, it started the Krylov
   // solve from 1.3e9 times the residual, which then diverged (DIVERGED_DTOL) and forced a
   // sub-step. A prediction must reduce the residual; if it does not, the basis is made
   // A-orthonormal for the current matrix and the projection tried once more, else dropped.
-  double rel = projection_residual();
+  double rel = projection_residual(A, r, du);
   if (!(rel < 1.0)) {
-    refresh_basis();
-    rel = basis.empty() ? INFINITY : projection_residual();
+    refresh(A);
+    rel = basis_.empty() ? INFINITY : projection_residual(A, r, du);
   }
   PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
   if (!(rel < 1.0)) {
     UGS_PETSC(VecSet(du, 0.0));
-    predicted = INFINITY;
+    predicted_ = INFINITY;
     return false;
   }
-  predicted = rel;
+  predicted_ = rel;
   return true;
 }
 
-void MechanicsSolver::Impl::refresh_basis() {
-  const int m = static_cast<int>(basis.size());
+void Predictor::refresh(Mat A) {
+  const int m = static_cast<int>(basis_.size());
   if (m == 0) return;
   PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
-  for (int j = 0; j < m; ++j) UGS_PETSC(MatMult(A, basis[j], abasis[j]));
+  for (int j = 0; j < m; ++j) UGS_PETSC(MatMult(A, basis_[j], abasis_[j]));
   Eigen::MatrixXd G(m, m);
   std::vector<PetscScalar> dots(m);
   for (int j = 0; j < m; ++j) {
-    UGS_PETSC(VecMDot(abasis[j], m, basis.data(), dots.data()));
+    UGS_PETSC(VecMDot(abasis_[j], m, basis_.data(), dots.data()));
     for (int i = 0; i < m; ++i) G(i, j) = dots[i];
   }
   G = 0.5 * (G + G.transpose());
@@ -64,31 +74,27 @@ void MechanicsSolver::Impl::refresh_basis() {
   for (int k = m - 1; k >= 0; --k) {
     if (!(lam(k) > 1e-10 * lam(m - 1))) break;
     Vec w, aw_k;
-    UGS_PETSC(VecDuplicate(u, &w));
-    UGS_PETSC(VecDuplicate(u, &aw_k));
+    UGS_PETSC(VecDuplicate(like_, &w));
+    UGS_PETSC(VecDuplicate(like_, &aw_k));
     std::vector<PetscScalar> coef(m);
     for (int i = 0; i < m; ++i) coef[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
     UGS_PETSC(VecSet(w, 0.0));
     UGS_PETSC(VecSet(aw_k, 0.0));
-    UGS_PETSC(VecMAXPY(w, m, coef.data(), basis.data()));
-    UGS_PETSC(VecMAXPY(aw_k, m, coef.data(), abasis.data()));
+    UGS_PETSC(VecMAXPY(w, m, coef.data(), basis_.data()));
+    UGS_PETSC(VecMAXPY(aw_k, m, coef.data(), abasis_.data()));
     nb.push_back(w);
     nab.push_back(aw_k);
   }
-  for (Vec& v : basis) UGS_PETSC(VecDestroy(&v));
-  for (Vec& v : abasis) UGS_PETSC(VecDestroy(&v));
-  basis = std::move(nb);
-  abasis = std::move(nab);
+  for (Vec& v : basis_) UGS_PETSC(VecDestroy(&v));
+  for (Vec& v : abasis_) UGS_PETSC(VecDestroy(&v));
+  basis_ = std::move(nb);
+  abasis_ = std::move(nab);
   PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
 }
 
-void MechanicsSolver::Impl::remember_increment_from(Vec base) {
-  if (!assembler.mat_created) return;  // (no matrix yet: the step had no load)
-  Vec v, av;
-  UGS_PETSC(VecDuplicate(u, &v));
-  UGS_PETSC(VecDuplicate(u, &av));
-  UGS_PETSC(VecWAXPY(v, -1.0, base, u));
-  zero_fixed(v);  // prescribed components do not move: keep the basis in the free space
+void Predictor::remember(Mat A, Vec v) {
+  Vec av;
+  UGS_PETSC(VecDuplicate(like_, &av));
   UGS_PETSC(MatMult(A, v, av));
   PetscScalar n0 = 0;
   UGS_PETSC(VecDot(v, av, &n0));
@@ -97,13 +103,13 @@ void MechanicsSolver::Impl::remember_increment_from(Vec base) {
     UGS_PETSC(VecDestroy(&av));
     return;
   }
-  const int m = static_cast<int>(basis.size());
+  const int m = static_cast<int>(basis_.size());
   for (int pass = 0; pass < 2 && m > 0; ++pass) {
     std::vector<PetscScalar> c(m);
-    UGS_PETSC(VecMDot(av, m, basis.data(), c.data()));  // W^T A v
+    UGS_PETSC(VecMDot(av, m, basis_.data(), c.data()));  // W^T A v
     for (auto& x : c) x = -x;
-    UGS_PETSC(VecMAXPY(v, m, c.data(), basis.data()));
-    UGS_PETSC(VecMAXPY(av, m, c.data(), abasis.data()));
+    UGS_PETSC(VecMAXPY(v, m, c.data(), basis_.data()));
+    UGS_PETSC(VecMAXPY(av, m, c.data(), abasis_.data()));
   }
   PetscScalar n1 = 0;
   UGS_PETSC(VecDot(v, av, &n1));
@@ -114,14 +120,14 @@ void MechanicsSolver::Impl::remember_increment_from(Vec base) {
   }
   UGS_PETSC(VecScale(v, 1.0 / std::sqrt(n1)));
   UGS_PETSC(VecScale(av, 1.0 / std::sqrt(n1)));
-  if (static_cast<int>(basis.size()) == kRecycle) {
-    UGS_PETSC(VecDestroy(&basis.front()));
-    UGS_PETSC(VecDestroy(&abasis.front()));
-    basis.erase(basis.begin());
-    abasis.erase(abasis.begin());
+  if (static_cast<int>(basis_.size()) == kRecycle) {
+    UGS_PETSC(VecDestroy(&basis_.front()));
+    UGS_PETSC(VecDestroy(&abasis_.front()));
+    basis_.erase(basis_.begin());
+    abasis_.erase(abasis_.begin());
   }
-  basis.push_back(v);
-  abasis.push_back(av);
+  basis_.push_back(v);
+  abasis_.push_back(av);
 }
 
 }  // namespace ugs::mech

@@ -1,6 +1,6 @@
 // The state and the pieces of the mechanics solver (ugs/mechanics/solver.hpp), shared by its source
 // files: solver.cpp (public interface, gathers), solver_setup.cpp, assembly.cpp, linear_solve.cpp,
-// predictor.cpp, newton.cpp. Private to ugs_mechanics.
+// step.cpp, newton.cpp and predictor.cpp (the Newton part). Private to ugs_mechanics.
 #pragma once
 
 #include "ugs/mechanics/solver.hpp"
@@ -10,6 +10,7 @@
 #include <cstring>
 #include <Eigen/Dense>
 #include <fmt/format.h>
+#include <functional>
 #include <petscksp.h>
 #include "local_mesh.hpp"
 #include "petsc_check.hpp"
@@ -76,7 +77,20 @@ struct HypoStateStore {
   long long n_global = 0;              // over all ranks
   bool saturated = false;
   std::size_t size() const { return cells.size(); }
+  // Magnitude of the effective vertical stress of element h at the start of the step [MPa]
+  // (s0: per local cell, at the initial state).
+  double start_sigma(int h, const std::vector<double>& s0) const { return s0[cells[h]] - committed[h].dsig[ZZ] * 1e-6; }
 };
+
+// Whether an element's tangent differs between two loading phases (-1: none yet). Under
+// sigma-max, unloading and reloading share the stiffness c_M(sigma_max) / c_R.
+inline bool tangent_differs(fem::InversionRule rule, int phase_a, int phase_b) {
+  if (phase_a == phase_b) return false;
+  const auto unload_reload = [](int p) {
+    return p == static_cast<int>(fem::LoadingPhase::Unloading) || p == static_cast<int>(fem::LoadingPhase::Reloading);
+  };
+  return !(unload_reload(phase_a) && unload_reload(phase_b) && rule == fem::InversionRule::SigmaMax);
+}
 
 // Assembler: the sparsity pattern of the owned rows, the assembled values, and which tangent each
 // hypo-plastic element contributes to them (incremental assembly, assembly.cpp).
@@ -116,6 +130,124 @@ struct PreconditionerReuse {
   void record(int iterations, double reduction, bool fresh);
 };
 
+// The result of one linear solve (linear_solve.cpp).
+struct LinearSolveResult {
+  int iterations = 0;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  double reduction = 0;
+  // Why the preconditioner was set up for this solve (-ugs_newton_monitor): "" kept, "first",
+  // "branches" (elements changed stiffness), "rate" (iterations per decade), "budget" (a kept
+  // one failed and the solve was repeated).
+  const char* setup = "";
+};
+
+// Predictor of Newton's first correction (predictor.cpp). The increments of earlier steps span
+// most of a new one (the seasonal cycles repeat and the flow fields are smooth in time): the first
+// Newton correction starts from the Galerkin projection on them. The basis W is A-orthonormal
+// (W^T A W = I) and A W is kept, so the projection du0 = W (W^T r) costs dot products only. W is
+// orthonormal for the matrix it was built with; when the matrix changes it stays a good (no longer
+// optimal) guess until the preconditioner is rebuilt, when A W is recomputed and W
+// re-orthonormalized (refresh). The prediction is used only when it reduces the residual
+// (||r - A du0|| < ||r||); otherwise the basis is refreshed for the current matrix and the
+// projection tried again, else dropped.
+// It reads the matrix and vectors it is given and changes only du and its own basis.
+class Predictor {
+ public:
+  Predictor() = default;
+  Predictor(const Predictor&) = delete;
+  Predictor& operator=(const Predictor&) = delete;
+  ~Predictor();
+  // Work vectors are laid out like u (ghosted, owned displacements); u is not written.
+  void setup(Vec u);
+  // du = W (W^T r) if it reduces the residual (returns true), else du = 0.
+  bool predict(Mat A, Vec r, Vec du);
+  // Re-orthonormalizes the basis for the current matrix A (after a preconditioner rebuild).
+  void refresh(Mat A);
+  // Adds the increment v of a converged (sub-)step (its prescribed components zero; the predictor
+  // takes it over), A-orthogonalized against the basis (the oldest direction is dropped when full).
+  void remember(Mat A, Vec v);
+  // The relative residual the last prediction left (-ugs_newton_monitor): -1 none tried, inf dropped.
+  double predicted() const { return predicted_; }
+
+ private:
+  static constexpr int kRecycle = 24;
+  // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw_).
+  double projection_residual(Mat A, Vec r, Vec du);
+  std::vector<Vec> basis_, abasis_;  // W (A-orthonormal) and A W
+  Vec aw_ = nullptr;
+  Vec like_ = nullptr;  // u: the layout of new basis vectors (not owned)
+  double predicted_ = -1;
+};
+
+// Newton: the iteration of one (sub-)step with the knee holds (newton.cpp). It is given, by
+// reference, what it reads and what it changes, and the solver's operations it calls.
+class Newton {
+ public:
+  // What Newton reads.
+  struct Reads {
+    const SolverOptions& opt;               // max_newton, tolerance
+    const LocalMesh& lm;                    // materials, ownership, communicator
+    const std::vector<fem::Tet4>& geo;      // held_off_branch's force bound
+    const std::vector<double>& s0;          // initial effective vertical stress [MPa]
+    const std::vector<double>& dp_cell;     // pressure change of the committed state
+    const bool& has_hyp;                    // some rank has hypo-plastic elements
+    Coupling* const& coupling;              // extra unknowns (fault contact) or null
+    const PreconditionerReuse& reuse;       // setups (counted in the report)
+    const Mat& A;                           // the tangent (the predictor's projection)
+    const Vec& r;                           // the residual (written by residual())
+  };
+  // What Newton changes: the hold fields of the state store (guess, piece, flips, hold,
+  // hold_dir; the trial states change through residual()), the values of u (u_save keeps the
+  // start of the (sub-)step) and of the correction du.
+  struct Changes {
+    HypoStateStore& hyp;
+    const Vec& u;
+    const Vec& u_save;
+    const Vec& du;
+  };
+  // The solver's operations Newton calls.
+  struct Operations {
+    std::function<void(const std::vector<double>&)> external_force;  // f_ext of a pressure change
+    std::function<double()> residual;     // r = f_ext - f_int(u); the trial states; returns ||r||
+    std::function<void()> assemble;       // A from the trial states
+    std::function<LinearSolveResult(double rtol, bool guess)> solve;  // A du = r
+  };
+
+  Newton(Reads reads, Changes changes, Operations ops) : in_(reads), out_(changes), op_(std::move(ops)) {}
+
+  // Iterates u towards the equilibrium with the pressure change dp_target (per local cell).
+  // Returns false (why says why) when it does not converge; rep gets the iteration counts.
+  bool iterate(const std::vector<double>& dp_target, StepReport& rep, std::string& why);
+
+  Predictor predictor;
+
+ private:
+  // An element that changes branch twice within a (sub-)step sits at the knee, where its stiffness
+  // jumps by c_R (at J = 0 on the virgin curve even its lateral stress jumps): Newton would cycle.
+  // It is held on the unloading/reloading branch (the stiffer one: Newton with the softer tangent
+  // overshoots); the residual is then smooth (hypoplastic.hpp). From Newton iteration
+  // kHoldOnFirstChangeFrom on, one change is enough: on large meshes a tail of elements near the
+  // pressure front (J ~ 0) changes branch once each, a few per iteration, and keeps the residual
+  // from converging (thesis-scale box, 1950-02: 21 iterations with 2 changes, or no convergence on
+  // another partition). The held branches are checked at convergence (held_off_branch).
+  static constexpr int kHoldOnFirstChangeFrom = 3;
+  void track_branches(int k);
+  // Whether an element's tangent changed with its loading phase since `phase_before`.
+  bool tangent_moved(std::size_t h, int phase_before) const;
+
+  // The consistency of the held branches at a converged iterate. A held element whose J ended on
+  // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
+  // after a vertical strain change of delta (the stress moves by delta Dhat e_z / c_t): its
+  // residual is within ||V B^T delta Dhat e_z / c_t|| of the residual of a state that obeys the
+  // law everywhere (at the knee the response is set-valued: either branch's stiffness is
+  // admissible). Returns the sum of these bounds over the inconsistent elements (all ranks).
+  double held_off_branch() const;
+
+  Reads in_;
+  Changes out_;
+  Operations op_;
+};
+
 struct MechanicsSolver::Impl {
   SolverOptions opt;
   LocalMesh lm;
@@ -141,22 +273,23 @@ struct MechanicsSolver::Impl {
   Mat A = nullptr, P = nullptr;
   Vec u = nullptr, u_save = nullptr, u_step = nullptr, r = nullptr, du = nullptr;
   KSP ksp = nullptr;
-  // Predictor: the span of the last step increments (orthonormal), Galerkin-projected.
-  static constexpr int kRecycle = 24;
-  std::vector<Vec> basis, abasis;  // W (A-orthonormal) and A W
-  Vec aw = nullptr;
   // Extra unknowns solved with u (fault contact, coupling.hpp); null for the continuous model.
   Coupling* coupling = nullptr;
   bool released = false;  // release_linear_system() was called: no more steps
+
+  // ---- Newton (newton.cpp, predictor.cpp) -----------------------------------------------------
+  Newton newton{Newton::Reads{opt, lm, geo, s0, dp_cell, has_hyp, coupling, reuse, A, r},
+                Newton::Changes{hyp, u, u_save, du},
+                Newton::Operations{[this](const std::vector<double>& dp) { external_force(dp); },
+                                   [this] { return residual(); }, [this] { assemble(); },
+                                   [this](double rtol, bool guess) { return solve(rtol, guess); }}};
 
   ~Impl() {
     if (ksp) KSPDestroy(&ksp);
     if (A) MatDestroy(&A);
     if (P) MatDestroy(&P);
-    for (Vec* v : {&u, &u_save, &u_step, &r, &du, &aw})
+    for (Vec* v : {&u, &u_save, &u_step, &r, &du})
       if (*v) VecDestroy(v);
-    for (Vec& v : basis) VecDestroy(&v);
-    for (Vec& v : abasis) VecDestroy(&v);
   }
 
   // Every solver runs a Krylov method; with MUMPS or CHOLMOD its preconditioner is a factorization,
@@ -221,10 +354,8 @@ struct MechanicsSolver::Impl {
     return D;
   }
 
-  double start_sigma(int h) const {
-    // Magnitude of the effective vertical stress at the start of the step [MPa].
-    return s0[hyp.cells[h]] - hyp.committed[h].dsig[ZZ] * 1e-6;
-  }
+  // Magnitude of the effective vertical stress at the start of the step [MPa].
+  double start_sigma(int h) const { return hyp.start_sigma(h, s0); }
 
   void external_force(const std::vector<double>& dp);
 
@@ -260,15 +391,7 @@ struct MechanicsSolver::Impl {
   void add_to_matrix(int c, const std::array<double, 144>& Ke);
 
   // ---- linear solve ---------------------------------------------------------------------------
-  struct SolveResult {
-    int iterations = 0;
-    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-    double reduction = 0;
-    // Why the preconditioner was set up for this solve (-ugs_newton_monitor): "" kept, "first",
-    // "branches" (elements changed stiffness), "rate" (iterations per decade), "budget" (a kept
-    // one failed and the solve was repeated).
-    const char* setup = "";
-  };
+  using SolveResult = LinearSolveResult;
 
   // GAMG's fine-level smoother runs on the preconditioning matrix: when A changes (hypo-plastic
   // branches) and the hierarchy is reused, it must see the matrix the hierarchy was built from, or
@@ -289,58 +412,20 @@ struct MechanicsSolver::Impl {
   // True when many hypo-plastic elements changed to a branch of another stiffness since the
   // preconditioner was built: their stiffness jumped by c_R, and a new setup (a few V-cycles) costs
   // less than the iterations a stale hierarchy needs.
-  bool branches_moved() const;
-
-  // ---- predictor ------------------------------------------------------------------------------
-  // The increments of earlier steps span most of a new one (the seasonal cycles repeat and the
-  // flow fields are smooth in time): the first Newton correction starts from the Galerkin
-  // projection on them. The basis W is A-orthonormal (W^T A W = I) and A W is kept, so the
-  // projection du0 = W (W^T r) costs dot products only. W is orthonormal for the matrix it was
-  // built with; when the matrix changes it stays a good (no longer optimal) guess until the
-  // preconditioner is rebuilt, when A W is recomputed and W re-orthonormalized.
-  // The prediction is used only when it reduces the residual (||r - A du0|| < ||r||); otherwise
-  // the basis is refreshed for the current matrix and the projection tried again, else dropped.
-  bool predict();
-  // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw).
-  double projection_residual();
-  // The relative residual the last prediction left (-ugs_newton_monitor): -1 none tried, inf dropped.
-  double predicted = -1;
-
-  // Re-orthonormalizes the basis for the current matrix (after a preconditioner rebuild).
-  void refresh_basis();
-
-  // Adds the increment u - base of a converged (sub-)step to the basis, A-orthogonalized against it
-  // (the oldest direction is dropped when full).
-  void remember_increment_from(Vec base);
-
-  // ---- one (sub-)step -------------------------------------------------------------------------
-  bool newton(const std::vector<double>& dp_target, StepReport& rep, std::string& why);
-
-  // An element that changes branch twice within a (sub-)step sits at the knee, where its stiffness
-  // jumps by c_R (at J = 0 on the virgin curve even its lateral stress jumps): Newton would cycle.
-  // It is held on the unloading/reloading branch (the stiffer one: Newton with the softer tangent
-  // overshoots); the residual is then smooth (hypoplastic.hpp). From Newton iteration
-  // kHoldOnFirstChangeFrom on, one change is enough: on large meshes a tail of elements near the
-  // pressure front (J ~ 0) changes branch once each, a few per iteration, and keeps the residual
-  // from converging (thesis-scale box, 1950-02: 21 iterations with 2 changes, or no convergence on
-  // another partition). The held branches are checked at convergence (held_off_branch).
-  static constexpr int kHoldOnFirstChangeFrom = 3;
-  void track_branches(int k);
-  // Whether an element's tangent differs between two loading phases (-1: none yet). Under
-  // sigma-max, unloading and reloading share the stiffness c_M(sigma_max) / c_R.
-  bool tangent_differs(std::size_t h, int phase_a, int phase_b) const;
-  // Whether an element's tangent changed with its loading phase since `phase_before`.
-  bool tangent_moved(std::size_t h, int phase_before) const {
-    return tangent_differs(h, phase_before, static_cast<int>(hyp.trial[h].phase));
+  bool branches_moved() const {
+    long long mine = 0, all = 0;
+    for (std::size_t h = 0; h < assembler.assembled_phase.size(); ++h)
+      mine += tangent_differs(h, assembler.assembled_phase[h], reuse.phase[h]);
+    MPI_Allreduce(&mine, &all, 1, MPI_LONG_LONG, MPI_SUM, lm.comm);
+    return static_cast<double>(all) > 0.05 * static_cast<double>(hyp.n_global);
+  }
+  bool tangent_differs(std::size_t h, int phase_a, int phase_b) const {
+    return mech::tangent_differs(lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule, phase_a, phase_b);
   }
 
-  // The consistency of the held branches at a converged iterate. A held element whose J ended on
-  // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
-  // after a vertical strain change of delta (the stress moves by delta Dhat e_z / c_t): its
-  // residual is within ||V B^T delta Dhat e_z / c_t|| of the residual of a state that obeys the
-  // law everywhere (at the knee the response is set-valued: either branch's stiffness is
-  // admissible). Returns the sum of these bounds over the inconsistent elements (all ranks).
-  double held_off_branch();
+  // ---- one step (step.cpp): sub-steps, each solved by newton ----------------------------------
+  // Adds the increment u - base of a converged (sub-)step to the predictor's basis.
+  void remember_increment_from(Vec base);
 
   void commit(const std::vector<double>& dp_target);
 

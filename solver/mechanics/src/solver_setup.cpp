@@ -97,7 +97,7 @@ void MechanicsSolver::Impl::setup_vectors() {
                                 ghosts.data(), &u));
   UGS_PETSC(VecDuplicate(u, &u_save));
   UGS_PETSC(VecDuplicate(u, &u_step));
-  UGS_PETSC(VecDuplicate(u, &aw));
+  newton.predictor.setup(u);
   UGS_PETSC(VecDuplicate(u, &r));
   UGS_PETSC(VecDuplicate(u, &du));
   // Prescribed boundary values (zero unless a test sets them) on owned and ghost entries.

@@ -28,7 +28,7 @@ struct Phase {
   std::string name;
   std::int64_t start = 0, end = 0;   // seconds since 1970
 };
-// NAME=START/END (ISO dates, START before END); InputError at "--phase TEXT".
+// NAME=START/END (ISO dates, START before END); InputError at "metric phase TEXT".
 Phase parse_phase(const std::string& text);
 
 struct MetricOptions {
