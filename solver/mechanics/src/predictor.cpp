@@ -10,6 +10,13 @@ Predictor::~Predictor() {
   for (Vec& v : abasis_) VecDestroy(&v);
 }
 
+void Predictor::release() {
+  for (Vec& v : basis_) UGS_PETSC(VecDestroy(&v));
+  for (Vec& v : abasis_) UGS_PETSC(VecDestroy(&v));
+  basis_.clear();
+  abasis_.clear();
+}
+
 void Predictor::setup(Vec u) {
   like_ = u;
   UGS_PETSC(VecDuplicate(u, &aw_));

@@ -77,10 +77,7 @@ void MechanicsSolver::release_linear_system() {
   if (s.ksp) UGS_PETSC(KSPDestroy(&s.ksp));
   if (s.A) UGS_PETSC(MatDestroy(&s.A));
   if (s.P) UGS_PETSC(MatDestroy(&s.P));
-  for (Vec& v : s.basis) UGS_PETSC(VecDestroy(&v));
-  for (Vec& v : s.abasis) UGS_PETSC(VecDestroy(&v));
-  s.basis.clear();
-  s.abasis.clear();
+  s.newton.predictor.release();
   s.release_pattern();
   s.released = true;
 }

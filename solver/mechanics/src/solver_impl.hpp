@@ -166,6 +166,8 @@ class Predictor {
   // Adds the increment v of a converged (sub-)step (its prescribed components zero; the predictor
   // takes it over), A-orthogonalized against the basis (the oldest direction is dropped when full).
   void remember(Mat A, Vec v);
+  // Frees the basis (MechanicsSolver::release_linear_system: no step follows).
+  void release();
   // The relative residual the last prediction left (-ugs_newton_monitor): -1 none tried, inf dropped.
   double predicted() const { return predicted_; }
 
