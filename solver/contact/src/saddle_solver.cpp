@@ -159,7 +159,7 @@ void SaddlePointSolver::augment(Mat A, const PairDistribution& pd, SaddleSystem&
     MatNullSpace nsp = nullptr;
     CHK(MatGetNearNullSpace(A, &nsp));
     if (nsp) CHK(MatSetNearNullSpace(Kg_, nsp));
-  } else {
+  } else if (!kg_sum_.sum(A, G_, Kg_)) {
     CHK(MatCopy(A, Kg_, SUBSET_NONZERO_PATTERN));
     CHK(MatAXPY(Kg_, 1.0, G_, SUBSET_NONZERO_PATTERN));
   }

@@ -14,6 +14,7 @@
 #include <petscksp.h>
 
 #include "pair_distribution.hpp"
+#include "pattern_sum.hpp"
 #include "saddle_guess.hpp"
 #include "saddle_reuse.hpp"
 #include "saddle_system.hpp"
@@ -60,6 +61,7 @@ private:
   Mat A_seen_ = nullptr;
   KSP ksp_ = nullptr;
   bool configured_ = false;  // KSPSetFromOptions done since the last reset
+  PatternSum kg_sum_;  // K + G into K_gamma's values in place
   SaddleReuse reuse_;  // when the field split keeps its preconditioner
   std::vector<double> signature_;  // the augmentation weight of every multiplier row (the active set)
   SaddleGuess guess_;  // the field split's first iterate from the last solutions
