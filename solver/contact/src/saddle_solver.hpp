@@ -41,6 +41,8 @@ public:
 
   SaddleSolver kind() const { return kind_; }
   const char* name() const { return kind_ == SaddleSolver::Mumps ? "MUMPS" : "field split"; }
+  // A new load step begins (the preconditioner-reuse rule keeps a hierarchy across linear steps only).
+  void begin_step() { reuse_.begin_step(); }
 
 private:
   // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split).
