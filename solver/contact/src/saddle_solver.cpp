@@ -1,6 +1,7 @@
 #include "saddle_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -67,7 +68,7 @@ std::string mumps_infog(KSP ksp) {
 
 SaddlePointSolver::~SaddlePointSolver() {
   if (ksp_) KSPDestroy(&ksp_);
-  for (Mat* a : {&WB_, &G_, &Kg_, &J_, &Jaij_})
+  for (Mat* a : {&WB_, &G_, &Kg_, &Pg_, &J_, &Jp_, &Jaij_})
     if (*a) MatDestroy(a);
   for (Vec* v : {&rhs_, &sol_, &wr_})
     if (*v) VecDestroy(v);
@@ -142,6 +143,7 @@ void SaddlePointSolver::augment(Mat A, const PairDistribution& pd, SaddleSystem&
                               (e.Jg[3 * j] != 0 || e.Jg[3 * j + 1] != 0 || e.Jg[3 * j + 2] != 0);
       if (constraint) wdiag[3 * q + j] = opt_->augmentation / pd.pairs[q].area;
     }
+  signature_ = wdiag;
   PetscScalar* a = nullptr;
   CHK(VecGetArray(wr_, &a));
   for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i];
@@ -157,7 +159,7 @@ void SaddlePointSolver::augment(Mat A, const PairDistribution& pd, SaddleSystem&
     MatNullSpace nsp = nullptr;
     CHK(MatGetNearNullSpace(A, &nsp));
     if (nsp) CHK(MatSetNearNullSpace(Kg_, nsp));
-  } else {
+  } else if (!kg_sum_.sum(A, G_, Kg_)) {
     CHK(MatCopy(A, Kg_, SUBSET_NONZERO_PATTERN));
     CHK(MatAXPY(Kg_, 1.0, G_, SUBSET_NONZERO_PATTERN));
   }
@@ -235,21 +237,33 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
 
 void SaddlePointSolver::reset() {
   CHK(KSPReset(ksp_));
-  for (Mat* a : {&J_, &Jaij_})
+  for (Mat* a : {&J_, &Jp_, &Jaij_})
     if (*a) CHK(MatDestroy(a));
   A_seen_ = nullptr;
   configured_ = false;
-  pc_built_ = false;
+  reuse_.drop();
 }
 
 PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason) {
+  const bool iterative = kind_ == SaddleSolver::FieldSplit;
   Mat op = nullptr;
   if (!J_ || A != A_seen_) {
-    if (J_) CHK(MatDestroy(&J_));
-    Mat blocks[4] = {kind_ == SaddleSolver::FieldSplit ? Kg_ : A, sys.C, sys.B, sys.D};
+    for (Mat* a : {&J_, &Jp_})
+      if (*a) CHK(MatDestroy(a));
+    if (iterative) {
+      // The preconditioner's displacement block: a frozen copy of K_gamma (saddle_reuse.hpp).
+      if (!Pg_) CHK(MatDuplicate(Kg_, MAT_COPY_VALUES, &Pg_));
+      MatNullSpace nsp = nullptr;
+      CHK(MatGetNearNullSpace(A, &nsp));
+      if (nsp) CHK(MatSetNearNullSpace(Pg_, nsp));
+      Mat pblocks[4] = {Pg_, sys.C, sys.B, sys.D};
+      CHK(MatCreateNest(comm_, 2, nullptr, 2, nullptr, pblocks, &Jp_));
+    }
+    Mat blocks[4] = {iterative ? Kg_ : A, sys.C, sys.B, sys.D};
     CHK(MatCreateNest(comm_, 2, nullptr, 2, nullptr, blocks, &J_));
     A_seen_ = A;
-    if (kind_ == SaddleSolver::FieldSplit) {
+    reuse_.drop();
+    if (iterative) {
       IS isr[2];
       CHK(MatNestGetISs(J_, isr, nullptr));
       // The rigid-body modes reach the displacement block's multigrid through its index set
@@ -272,38 +286,51 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
   } else {
     op = J_;
   }
-  CHK(KSPSetOperators(ksp_, op, op));
-  if (!configured_) CHK(KSPSetFromOptions(ksp_));
-  configured_ = true;
   PetscReal old_rtol, abstol, dtol;
   PetscInt maxit;
-  CHK(KSPGetTolerances(ksp_, &old_rtol, &abstol, &dtol, &maxit));
-  CHK(KSPSetTolerances(ksp_, std::min(rtol, 1e-3), abstol, dtol, maxit));
-  // The field split keeps its multigrid hierarchy while the iteration counts stay close to those
-  // of a fresh setup (the tangent and the active set change little from one iteration, or one
-  // step, to the next); a stale one that fails is rebuilt at once.
-  const bool iterative = kind_ == SaddleSolver::FieldSplit;
-  bool reuse = iterative && opt_->reuse_preconditioner && pc_built_ && last_its_ <= std::max(2 * baseline_its_, baseline_its_ + 10);
   PetscInt its = 0;
+  // The field split keeps its preconditioner while the active set is the one it was built for and
+  // its rate stays near that right after the setup (saddle_reuse.hpp); a kept one that fails is
+  // rebuilt and the solve repeated.
+  bool keep = iterative && reuse_.keep(opt_->reuse_preconditioner, signature_);
   for (;;) {
-    CHK(KSPSetReusePreconditioner(ksp_, reuse ? PETSC_TRUE : PETSC_FALSE));
+    if (iterative && !keep) {
+      // The frozen block becomes the current one; the nest's state tells the field split to set up.
+      CHK(MatCopy(Kg_, Pg_, SAME_NONZERO_PATTERN));
+      CHK(MatAssemblyBegin(Jp_, MAT_FINAL_ASSEMBLY));
+      CHK(MatAssemblyEnd(Jp_, MAT_FINAL_ASSEMBLY));
+    }
+    CHK(KSPSetOperators(ksp_, op, iterative ? Jp_ : op));
+    if (!configured_) CHK(KSPSetFromOptions(ksp_));
+    configured_ = true;
+    CHK(KSPGetTolerances(ksp_, &old_rtol, &abstol, &dtol, &maxit));
+    CHK(KSPSetTolerances(ksp_, std::min(rtol, 1e-3), abstol, dtol, maxit));
+    CHK(KSPSetReusePreconditioner(ksp_, keep ? PETSC_TRUE : PETSC_FALSE));
+    PetscReal bnorm = 0;
     if (iterative) {
       guess_ratio_ = guess_.form(op, rhs_, sol_);
       CHK(KSPSetInitialGuessNonzero(ksp_, guess_ratio_ < 1 ? PETSC_TRUE : PETSC_FALSE));
+      CHK(VecNorm(rhs_, NORM_2, &bnorm));
     }
     CHK(KSPSolve(ksp_, rhs_, sol_));
     CHK(KSPGetIterationNumber(ksp_, &its));
     CHK(KSPGetConvergedReason(ksp_, &reason));
     stats.linear_iterations += its;
-    if (!reuse || reason >= 0) break;
-    reuse = false;
+    if (keep && reason < 0) {
+      keep = false;
+      continue;
+    }
+    if (iterative && reason >= 0) {
+      // Decades of residual reduction (FGMRES: the true residual; from the first iterate's).
+      PetscReal rnorm = 0;
+      CHK(KSPGetResidualNorm(ksp_, &rnorm));
+      const double r0 = std::min(guess_ratio_, 1.0) * bnorm;
+      const double decades = rnorm > 0 && r0 > 0 ? std::log10(r0 / rnorm) : 0.0;
+      reuse_.record(static_cast<int>(its), decades, !keep, signature_);
+    }
+    break;
   }
-  if (!reuse) {
-    ++stats.preconditioner_setups;
-    baseline_its_ = static_cast<int>(its);
-  }
-  pc_built_ = true;
-  last_its_ = static_cast<int>(its);
+  if (!keep) ++stats.preconditioner_setups;
   if (iterative && reason >= 0) guess_.remember(sol_);
   return its;
 }

@@ -3,8 +3,9 @@
 //   MUMPS        the block matrix converted to AIJ and factorised (LU), or
 //   field split  FGMRES with a Schur-complement field split: the displacement block augmented with
 //                the constraint rows (K + gamma C W B, augmented Lagrangian) under algebraic
-//                multigrid, the multiplier block by selfp; the hierarchy is kept while the
-//                iteration counts stay close to those of a fresh setup.
+//                multigrid, the multiplier block by selfp; the preconditioner (on a frozen copy
+//                of the augmented block) is kept while the active set is unchanged and the rate
+//                stays close to that of a fresh setup (saddle_reuse.hpp).
 #pragma once
 #include <array>
 #include <string>
@@ -13,7 +14,9 @@
 #include <petscksp.h>
 
 #include "pair_distribution.hpp"
+#include "pattern_sum.hpp"
 #include "saddle_guess.hpp"
+#include "saddle_reuse.hpp"
 #include "saddle_system.hpp"
 #include "ugs/contact/contact.hpp"
 
@@ -38,6 +41,8 @@ public:
 
   SaddleSolver kind() const { return kind_; }
   const char* name() const { return kind_ == SaddleSolver::Mumps ? "MUMPS" : "field split"; }
+  // A new load step begins (the preconditioner-reuse rule keeps a hierarchy across linear steps only).
+  void begin_step() { reuse_.begin_step(); }
 
 private:
   // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split).
@@ -54,11 +59,13 @@ private:
   const ContactOptions* opt_ = nullptr;
   Vec rhs_ = nullptr, sol_ = nullptr, wr_ = nullptr;
   Mat WB_ = nullptr, G_ = nullptr, Kg_ = nullptr, J_ = nullptr, Jaij_ = nullptr;
+  Mat Pg_ = nullptr, Jp_ = nullptr;  // the preconditioner's frozen copy of K_gamma and its block matrix
   Mat A_seen_ = nullptr;
   KSP ksp_ = nullptr;
-  bool pc_built_ = false;
   bool configured_ = false;  // KSPSetFromOptions done since the last reset
-  int baseline_its_ = 0, last_its_ = 0;
+  PatternSum kg_sum_;  // K + G into K_gamma's values in place
+  SaddleReuse reuse_;  // when the field split keeps its preconditioner
+  std::vector<double> signature_;  // the augmentation weight of every multiplier row (the active set)
   SaddleGuess guess_;  // the field split's first iterate from the last solutions
   double guess_ratio_ = 1;  // ||b - J x0|| / ||b|| of the last solve's first iterate
 };

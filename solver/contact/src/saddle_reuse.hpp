@@ -1,0 +1,53 @@
+// When the field split keeps its preconditioner (the displacement block's multigrid hierarchy and
+// the Schur approximation) and when it builds a new one (SaddlePointSolver, docs/fault-mechanics.md).
+//
+// A kept hierarchy runs on a frozen copy of the augmented displacement block, so that GAMG's
+// Chebyshev bounds stay those of the matrix it was built from (the mechanics' own rule, solver_impl.hpp
+// separate_p); the Krylov method sees the current operator. It is rebuilt when
+//   - the active set changed: the constraint rows (stick, the normal of slipping pairs) are the
+//     augmented springs of K + gamma C W B, so their pattern is the active set's signature;
+//   - the rate degraded: iterations per decade of residual reduction beyond those right after the
+//     setup (mech::keep_multigrid: 1.5 times, or 3 more);
+//   - a kept one failed (the solve is repeated after a setup);
+//   - the load step is nonlinear: a hierarchy is kept only for the first solve of a step, and only
+//     when the step before took a single solve (a linear step: storage months on the unloading/
+//     reloading branch with an unchanged active set). Within a nonlinear step (virgin loading:
+//     the tangent changes at every Newton iteration) a frozen hierarchy went stale: kept there, the
+//     coarsened history's production months took 30 % more linear iterations (session 12).
+// Counts only, never measured time: the decision changes the numbers (reuse_rule.hpp).
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace ugs::contact::detail {
+
+class SaddleReuse {
+public:
+  // Whether the next solve may keep the preconditioner: `allowed` (the option), one built, the same
+  // active set as when it was built (`signature`: the augmentation weight of every multiplier row),
+  // and the last solve's rate within the multigrid rule.
+  bool keep(bool allowed, const std::vector<double>& signature) const;
+  // After a solve: its iterations and the decades of residual reduction it achieved; `fresh` when
+  // the preconditioner was built for it (then `signature` becomes the reference).
+  void record(int iterations, double decades, bool fresh, const std::vector<double>& signature);
+  // Forget the preconditioner (after a failure).
+  void drop() { built_ = false; }
+  // A new load step begins: the one before was linear if it took at most one solve.
+  void begin_step() {
+    last_step_linear_ = solves_in_step_ <= 1;
+    solves_in_step_ = 0;
+  }
+
+  std::size_t setups() const { return setups_; }
+
+private:
+  static double per_decade(int iterations, double decades);
+  bool built_ = false;
+  double baseline_ipd_ = 0, last_ipd_ = 0;
+  std::vector<double> signature_;
+  std::size_t setups_ = 0;
+  int solves_in_step_ = 0;
+  bool last_step_linear_ = true;
+};
+
+}  // namespace ugs::contact::detail

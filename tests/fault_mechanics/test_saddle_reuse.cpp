@@ -1,0 +1,78 @@
+// The field split's preconditioner-reuse rule (solver/contact/src/saddle_reuse.hpp): counts of
+// setups over sequences of solves.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "saddle_reuse.hpp"
+
+using ugs::contact::detail::SaddleReuse;
+
+namespace {
+// A solve through the rule: keeps when it may, else counts a setup; `its` iterations over `decades`.
+void solve_once(SaddleReuse& r, const std::vector<double>& sig, int its, double decades, bool allowed = true) {
+  const bool keep = r.keep(allowed, sig);
+  r.record(its, decades, !keep, sig);
+}
+// A linear load step: one solve.
+void solve(SaddleReuse& r, const std::vector<double>& sig, int its, double decades, bool allowed = true) {
+  r.begin_step();
+  solve_once(r, sig, its, decades, allowed);
+}
+}  // namespace
+
+TEST(SaddleReuse, UnchangedActiveSetKeepsOneSetupOverManySolves) {
+  SaddleReuse r;
+  const std::vector<double> stick{1.0, 1.0, 1.0, 0.5, 0.5, 0.5};
+  solve(r, stick, 100, 8.0);  // 12.5 per decade: the baseline
+  for (int i = 0; i < 9; ++i) solve(r, stick, 4, 1.0);  // a good first iterate: 4 per decade
+  EXPECT_EQ(r.setups(), 1u);
+}
+
+TEST(SaddleReuse, ChangedActiveSetForcesASetup) {
+  SaddleReuse r;
+  const std::vector<double> stick{1.0, 1.0, 1.0}, slip{1.0, 0.0, 0.0};
+  solve(r, stick, 100, 8.0);
+  solve(r, stick, 5, 1.0);
+  EXPECT_EQ(r.setups(), 1u);
+  r.begin_step();
+  EXPECT_FALSE(r.keep(true, slip));
+  solve_once(r, slip, 90, 8.0);
+  EXPECT_EQ(r.setups(), 2u);
+  r.begin_step();
+  EXPECT_TRUE(r.keep(true, slip));
+}
+
+TEST(SaddleReuse, DegradedRateForcesASetupAndTheOptionOffSetsUpEverySolve) {
+  SaddleReuse r;
+  const std::vector<double> s{1.0};
+  solve(r, s, 80, 8.0);          // 10 per decade
+  solve(r, s, 120, 8.0);         // 15: within max(1.5 x 10, 10 + 3) = 15, still kept
+  EXPECT_EQ(r.setups(), 1u);
+  solve(r, s, 128, 8.0);         // 16 per decade: beyond, the next solve sets up
+  r.begin_step();
+  EXPECT_FALSE(r.keep(true, s));
+  solve_once(r, s, 80, 8.0);
+  EXPECT_EQ(r.setups(), 2u);
+  r.begin_step();
+  EXPECT_TRUE(r.keep(true, s));
+  r.drop();                      // after a failure
+  EXPECT_FALSE(r.keep(true, s));
+  SaddleReuse off;
+  for (int i = 0; i < 4; ++i) solve(off, s, 10, 8.0, false);
+  EXPECT_EQ(off.setups(), 4u);
+}
+
+TEST(SaddleReuse, NonlinearStepsSetUpEverySolveAndTheNextStepToo) {
+  // A production step (4 Newton solves, virgin loading): every solve sets up; the step after it
+  // sets up too; the linear steps after that keep the hierarchy.
+  SaddleReuse r;
+  const std::vector<double> s{1.0};
+  r.begin_step();
+  for (int k = 0; k < 4; ++k) solve_once(r, s, 80, 8.0);
+  EXPECT_EQ(r.setups(), 4u);
+  solve(r, s, 80, 8.0);
+  EXPECT_EQ(r.setups(), 5u);
+  for (int k = 0; k < 6; ++k) solve(r, s, 5, 1.0);
+  EXPECT_EQ(r.setups(), 5u);
+}
