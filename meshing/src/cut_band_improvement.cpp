@@ -331,8 +331,25 @@ private:
       r(static_cast<Eigen::Index>(i)) = cons[i].c - dot(cons[i].n, X(a));
     }
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+    const bool z_built = cod.rank() < A.cols();  // Z exists only when the default threshold found A rank deficient
     cod.setThreshold(1e-6);
-    const Eigen::Vector3d dx = cod.solve(r);
+    Eigen::Vector3d dx;
+    if (z_built || cod.rank() == A.cols()) {
+      dx = cod.solve(r);
+    } else {
+      // Rank deficient at 1e-6 only: solve() would apply a Z factor that was never computed (Eigen
+      // builds it for the rank found at compute(); its coefficients are then uninitialised memory,
+      // which made the mesh depend on what the heap held). The basic solution instead: what solve()
+      // gives with Z = identity, the outcome the meshes so far had.
+      const Eigen::Index rank = cod.rank();
+      dx.setZero();
+      if (rank > 0) {
+        Eigen::VectorXd c = r;
+        c.applyOnTheLeft(cod.householderQ().setLength(rank).adjoint());
+        dx.topRows(rank) = cod.matrixT().topLeftCorner(rank, rank).template triangularView<Eigen::Upper>().solve(c.topRows(rank));
+        dx = cod.colsPermutation() * dx;
+      }
+    }
     x = {X(a)[0] + dx(0), X(a)[1] + dx(1), X(a)[2] + dx(2)};
     if (!(dx.norm() <= reach)) return false;
     for (const auto& k : cons)
