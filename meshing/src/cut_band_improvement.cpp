@@ -9,6 +9,7 @@
 #include <set>
 #include <iterator>
 #include <tuple>
+#include <unordered_map>
 
 #include <Eigen/Dense>
 
@@ -80,6 +81,7 @@ public:
       }
     smooth_slot_.assign(s_.nodes.size(), 0);
     moved_at_.assign(s_.nodes.size(), 0);
+    smooth_failed_.assign(s_.nodes.size(), kNever);
     tet_q_.assign(s_.tets.size(), 0.0);
     tet_q_time_.assign(s_.tets.size(), kNever);
     if (smooth_below_ > 0)
@@ -259,7 +261,11 @@ private:
     std::size_t merged = 0;
     for (const auto& [len, b, a] : cands) {
       if (node_dead_[b] || node_dead_[a] || touched[b] || touched[a]) continue;
-      if (!try_collapse(b, a)) continue;
+      if (failed_before(b, a)) continue;
+      if (!try_collapse(b, a)) {
+        failed_at_[(std::uint64_t{b} << 32) | a] = changes_;
+        continue;
+      }
       ++merged;
       // Incidences around b changed: its neighbourhood waits for the next pass. The surfaces of
       // b's and a's neighbours changed with them (incidences, a's position): computed again when asked.
@@ -273,6 +279,21 @@ private:
         for (auto v : s_.tets[t]) changed_at_[v] = changes_;
     }
     return merged;
+  }
+
+  // A collapse of b into a that failed fails again while no collapse has changed a tetrahedron
+  // around b or a, moved one of their nodes or changed one of their nodes' faults (each of these
+  // marks the nodes of every tetrahedron it touched: changed_at_): the trial depends on nothing
+  // else. The later passes meet the same ten thousand failing candidates again (thesis bench).
+  bool failed_before(std::uint32_t b, std::uint32_t a) const {
+    const auto it = failed_at_.find((std::uint64_t{b} << 32) | a);
+    if (it == failed_at_.end()) return false;
+    const std::uint64_t at = it->second;
+    for (auto v : {b, a})
+      for (auto t : tets_of_[v])
+        for (auto w : s_.tets[t])
+          if (changed_at_[w] > at) return false;
+    return true;
   }
 
   // surfaces_of once per node over the collapse passes (a node is the end of several candidate
@@ -480,8 +501,25 @@ private:
     std::sort(order.begin(), order.end());
     build_adjacency(want);
     std::size_t moved = 0;
-    for (const auto& [q, v] : order) moved += smooth(v);
+    for (const auto& [q, v] : order) {
+      if (smooth_failed_[v] != kNever && !moved_around(v, smooth_failed_[v])) continue;
+      if (smooth(v)) ++moved;
+      else smooth_failed_[v] = moves_;
+    }
     return moved;
+  }
+
+  // Has a node of v's tetrahedra or triangles moved after moves_ was `at`? A smoothing step of v
+  // depends on nothing else (its surfaces, its neighbours' mean, its tetrahedra's angles), so one
+  // that failed fails again until then (most candidates of the later passes on the thesis bench).
+  bool moved_around(std::uint32_t v, std::uint64_t at) const {
+    for (auto t : tets_of_[v])
+      for (auto w : s_.tets[t])
+        if (moved_at_[w] > at) return true;
+    for (auto i : tris_of_[v])
+      for (auto w : s_.tris[i])
+        if (moved_at_[w] > at) return true;
+    return false;
   }
 
   // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
@@ -654,6 +692,7 @@ private:
   std::deque<SurfEntry> smooth_cache_;
   std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
   std::uint64_t moves_ = 0;
+  std::vector<std::uint64_t> smooth_failed_;   // per node: moves_ when its last smoothing step failed, kNever none
   std::vector<std::uint32_t> nb_scratch_;
   static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
   std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
@@ -663,6 +702,7 @@ private:
   std::deque<SurfEntry> surf_cache_;       // deque: entries stay put while it grows
   std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
   std::uint64_t changes_ = 0;              // successful collapses so far
+  std::unordered_map<std::uint64_t, std::uint64_t> failed_at_;  // (b << 32 | a) -> changes_ when its collapse failed
   ElementSoup s_;
   std::size_t first_new_;
   double ratio_, smooth_below_, tol_;
