@@ -128,11 +128,19 @@ private:
   }
 
   // Incidences of the nodes flagged in `want` (alive elements only), in increasing order.
+  // Only the lists of the previous call's nodes are emptied (not half a million per pass: freeing
+  // and zeroing them cost more than the lists themselves).
   void build_adjacency(const std::vector<char>& want) {
-    tets_of_.assign(s_.nodes.size(), {});
-    tris_of_.assign(s_.nodes.size(), {});
+    tets_of_.resize(s_.nodes.size());
+    tris_of_.resize(s_.nodes.size());
+    for (auto v : listed_) {
+      tets_of_[v].clear();
+      tris_of_[v].clear();
+    }
+    listed_.clear();
     for (std::size_t v = 0; v < want.size(); ++v) {
       if (!want[v]) continue;
+      listed_.push_back(static_cast<std::uint32_t>(v));
       auto& l = tets_of_[v];
       for (auto t : around_[v])
         if (!tet_dead_[t] && has(s_.tets[t], static_cast<std::uint32_t>(v))) l.push_back(t);
@@ -708,7 +716,8 @@ private:
   double ratio_, smooth_below_, tol_;
   double round_;  // "to rounding": a thousandth of the on-plane tolerance (1e-10 of the model's size)
   std::vector<char> tet_dead_, tri_dead_, node_dead_;
-  std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;
+  std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;  // of the nodes of the last build_adjacency, else empty
+  std::vector<std::uint32_t> listed_;                         // those nodes
   std::vector<std::uint32_t> band_;                   // the band's tetrahedra at the start, increasing
   std::vector<std::vector<std::uint32_t>> around_;   // per band node: tetrahedra that held it (may be stale)
   std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
