@@ -233,11 +233,15 @@ private:
   std::size_t collapse_pass() {
     std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> cands;  // (length, removed, kept)
     std::vector<char> want(s_.nodes.size(), 0);
-    node_faults_.assign(s_.nodes.size(), {});
+    node_faults_.resize(s_.nodes.size());  // emptied where filled (not reallocated per pass)
+    for (auto v : on_fault_) node_faults_[v].clear();
+    on_fault_.clear();
     for (std::size_t i = 0; i < s_.tris.size(); ++i)
       if (!tri_dead_[i] && s_.tri_group[i] >= s_.first_fault_group)
-        for (auto v : s_.tris[i])
+        for (auto v : s_.tris[i]) {
+          if (node_faults_[v].empty()) on_fault_.push_back(v);
           if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
+        }
     for (auto& g : node_faults_) std::sort(g.begin(), g.end());
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
@@ -482,6 +486,7 @@ private:
       around_[a].push_back(t);
     }
     for (const auto& [i, f] : changed_tris) s_.tris[i] = f;
+    if (node_faults_[a].empty() && !fa.empty()) on_fault_.push_back(a);
     node_faults_[a] = std::move(fa);
     node_dead_[b] = 1;
     return true;
@@ -721,6 +726,7 @@ private:
   std::vector<std::uint32_t> band_;                   // the band's tetrahedra at the start, increasing
   std::vector<std::vector<std::uint32_t>> around_;   // per band node: tetrahedra that held it (may be stale)
   std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
+  std::vector<std::uint32_t> on_fault_;                  // the nodes whose node_faults_ may be filled
 };
 
 }  // namespace
