@@ -9,6 +9,7 @@
 #include <set>
 #include <iterator>
 #include <tuple>
+#include <unordered_map>
 
 #include <Eigen/Dense>
 
@@ -80,6 +81,7 @@ public:
       }
     smooth_slot_.assign(s_.nodes.size(), 0);
     moved_at_.assign(s_.nodes.size(), 0);
+    smooth_failed_.assign(s_.nodes.size(), kNever);
     tet_q_.assign(s_.tets.size(), 0.0);
     tet_q_time_.assign(s_.tets.size(), kNever);
     if (smooth_below_ > 0)
@@ -126,11 +128,19 @@ private:
   }
 
   // Incidences of the nodes flagged in `want` (alive elements only), in increasing order.
+  // Only the lists of the previous call's nodes are emptied (not half a million per pass: freeing
+  // and zeroing them cost more than the lists themselves).
   void build_adjacency(const std::vector<char>& want) {
-    tets_of_.assign(s_.nodes.size(), {});
-    tris_of_.assign(s_.nodes.size(), {});
+    tets_of_.resize(s_.nodes.size());
+    tris_of_.resize(s_.nodes.size());
+    for (auto v : listed_) {
+      tets_of_[v].clear();
+      tris_of_[v].clear();
+    }
+    listed_.clear();
     for (std::size_t v = 0; v < want.size(); ++v) {
       if (!want[v]) continue;
+      listed_.push_back(static_cast<std::uint32_t>(v));
       auto& l = tets_of_[v];
       for (auto t : around_[v])
         if (!tet_dead_[t] && has(s_.tets[t], static_cast<std::uint32_t>(v))) l.push_back(t);
@@ -223,11 +233,15 @@ private:
   std::size_t collapse_pass() {
     std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> cands;  // (length, removed, kept)
     std::vector<char> want(s_.nodes.size(), 0);
-    node_faults_.assign(s_.nodes.size(), {});
+    node_faults_.resize(s_.nodes.size());  // emptied where filled (not reallocated per pass)
+    for (auto v : on_fault_) node_faults_[v].clear();
+    on_fault_.clear();
     for (std::size_t i = 0; i < s_.tris.size(); ++i)
       if (!tri_dead_[i] && s_.tri_group[i] >= s_.first_fault_group)
-        for (auto v : s_.tris[i])
+        for (auto v : s_.tris[i]) {
+          if (node_faults_[v].empty()) on_fault_.push_back(v);
           if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
+        }
     for (auto& g : node_faults_) std::sort(g.begin(), g.end());
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
@@ -259,7 +273,11 @@ private:
     std::size_t merged = 0;
     for (const auto& [len, b, a] : cands) {
       if (node_dead_[b] || node_dead_[a] || touched[b] || touched[a]) continue;
-      if (!try_collapse(b, a)) continue;
+      if (failed_before(b, a)) continue;
+      if (!try_collapse(b, a)) {
+        failed_at_[(std::uint64_t{b} << 32) | a] = changes_;
+        continue;
+      }
       ++merged;
       // Incidences around b changed: its neighbourhood waits for the next pass. The surfaces of
       // b's and a's neighbours changed with them (incidences, a's position): computed again when asked.
@@ -273,6 +291,21 @@ private:
         for (auto v : s_.tets[t]) changed_at_[v] = changes_;
     }
     return merged;
+  }
+
+  // A collapse of b into a that failed fails again while no collapse has changed a tetrahedron
+  // around b or a, moved one of their nodes or changed one of their nodes' faults (each of these
+  // marks the nodes of every tetrahedron it touched: changed_at_): the trial depends on nothing
+  // else. The later passes meet the same ten thousand failing candidates again (thesis bench).
+  bool failed_before(std::uint32_t b, std::uint32_t a) const {
+    const auto it = failed_at_.find((std::uint64_t{b} << 32) | a);
+    if (it == failed_at_.end()) return false;
+    const std::uint64_t at = it->second;
+    for (auto v : {b, a})
+      for (auto t : tets_of_[v])
+        for (auto w : s_.tets[t])
+          if (changed_at_[w] > at) return false;
+    return true;
   }
 
   // surfaces_of once per node over the collapse passes (a node is the end of several candidate
@@ -331,8 +364,25 @@ private:
       r(static_cast<Eigen::Index>(i)) = cons[i].c - dot(cons[i].n, X(a));
     }
     Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+    const bool z_built = cod.rank() < A.cols();  // Z exists only when the default threshold found A rank deficient
     cod.setThreshold(1e-6);
-    const Eigen::Vector3d dx = cod.solve(r);
+    Eigen::Vector3d dx;
+    if (z_built || cod.rank() == A.cols()) {
+      dx = cod.solve(r);
+    } else {
+      // Rank deficient at 1e-6 only: solve() would apply a Z factor that was never computed (Eigen
+      // builds it for the rank found at compute(); its coefficients are then uninitialised memory,
+      // which made the mesh depend on what the heap held). The basic solution instead: what solve()
+      // gives with Z = identity, the outcome the meshes so far had.
+      const Eigen::Index rank = cod.rank();
+      dx.setZero();
+      if (rank > 0) {
+        Eigen::VectorXd c = r;
+        c.applyOnTheLeft(cod.householderQ().setLength(rank).adjoint());
+        dx.topRows(rank) = cod.matrixT().topLeftCorner(rank, rank).template triangularView<Eigen::Upper>().solve(c.topRows(rank));
+        dx = cod.colsPermutation() * dx;
+      }
+    }
     x = {X(a)[0] + dx(0), X(a)[1] + dx(1), X(a)[2] + dx(2)};
     if (!(dx.norm() <= reach)) return false;
     for (const auto& k : cons)
@@ -436,6 +486,7 @@ private:
       around_[a].push_back(t);
     }
     for (const auto& [i, f] : changed_tris) s_.tris[i] = f;
+    if (node_faults_[a].empty() && !fa.empty()) on_fault_.push_back(a);
     node_faults_[a] = std::move(fa);
     node_dead_[b] = 1;
     return true;
@@ -463,8 +514,25 @@ private:
     std::sort(order.begin(), order.end());
     build_adjacency(want);
     std::size_t moved = 0;
-    for (const auto& [q, v] : order) moved += smooth(v);
+    for (const auto& [q, v] : order) {
+      if (smooth_failed_[v] != kNever && !moved_around(v, smooth_failed_[v])) continue;
+      if (smooth(v)) ++moved;
+      else smooth_failed_[v] = moves_;
+    }
     return moved;
+  }
+
+  // Has a node of v's tetrahedra or triangles moved after moves_ was `at`? A smoothing step of v
+  // depends on nothing else (its surfaces, its neighbours' mean, its tetrahedra's angles), so one
+  // that failed fails again until then (most candidates of the later passes on the thesis bench).
+  bool moved_around(std::uint32_t v, std::uint64_t at) const {
+    for (auto t : tets_of_[v])
+      for (auto w : s_.tets[t])
+        if (moved_at_[w] > at) return true;
+    for (auto i : tris_of_[v])
+      for (auto w : s_.tris[i])
+        if (moved_at_[w] > at) return true;
+    return false;
   }
 
   // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
@@ -637,6 +705,7 @@ private:
   std::deque<SurfEntry> smooth_cache_;
   std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
   std::uint64_t moves_ = 0;
+  std::vector<std::uint64_t> smooth_failed_;   // per node: moves_ when its last smoothing step failed, kNever none
   std::vector<std::uint32_t> nb_scratch_;
   static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
   std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
@@ -646,15 +715,18 @@ private:
   std::deque<SurfEntry> surf_cache_;       // deque: entries stay put while it grows
   std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
   std::uint64_t changes_ = 0;              // successful collapses so far
+  std::unordered_map<std::uint64_t, std::uint64_t> failed_at_;  // (b << 32 | a) -> changes_ when its collapse failed
   ElementSoup s_;
   std::size_t first_new_;
   double ratio_, smooth_below_, tol_;
   double round_;  // "to rounding": a thousandth of the on-plane tolerance (1e-10 of the model's size)
   std::vector<char> tet_dead_, tri_dead_, node_dead_;
-  std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;
+  std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;  // of the nodes of the last build_adjacency, else empty
+  std::vector<std::uint32_t> listed_;                         // those nodes
   std::vector<std::uint32_t> band_;                   // the band's tetrahedra at the start, increasing
   std::vector<std::vector<std::uint32_t>> around_;   // per band node: tetrahedra that held it (may be stale)
   std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
+  std::vector<std::uint32_t> on_fault_;                  // the nodes whose node_faults_ may be filled
 };
 
 }  // namespace

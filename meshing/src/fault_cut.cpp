@@ -225,6 +225,13 @@ public:
     }
     parent_.emplace(X_, T_);
     reach_.assign(X_.size(), 0.0);
+    {  // each node's list allocated once at its size (instead of growing by push_back)
+      std::vector<std::uint32_t> count(X_.size(), 0);
+      for (const auto& t : T_)
+        for (auto v : t) ++count[v];
+      tets_at_.resize(X_.size());
+      for (std::size_t v = 0; v < X_.size(); ++v) tets_at_[v].reserve(count[v]);
+    }
     for (std::size_t i = 0; i < T_.size(); ++i) {
       link(tets_at_, T_[i], static_cast<std::uint32_t>(i));
       raise_reach(T_[i]);
@@ -436,11 +443,17 @@ public:
   std::vector<std::array<std::uint32_t, 2>> bound_edges(const CutPanel& p, std::size_t bi) const {
     const CutHalfSpace& B = p.bounds[bi];
     const std::size_t n = X_.size();
-    std::vector<char> on(n);
+    std::vector<char> on(n), near(n);
     std::vector<double> h(n);
+    // A crossing edge's ends are within |m| times their reach of the bound's plane: only the
+    // tetrahedra around such nodes of P can hold one (the others were visited for nothing, one
+    // fault plane's worth per bound).
+    const double mm = norm(B.m);
     for (std::size_t i = 0; i < n; ++i) {
       on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
       h[i] = dot(B.m, X_[i]) - B.d;
+      const double reach = i < reach_.size() ? reach_[i] : std::numeric_limits<double>::infinity();
+      near[i] = on[i] && std::abs(h[i]) <= mm * (1.001 * reach + 2 * tol_);
     }
     struct Cand {
       std::uint32_t a, b;
@@ -449,7 +462,7 @@ public:
     };
     std::vector<Cand> cands;
     std::unordered_set<std::uint64_t> seen;
-    for (auto i : elements_at(tets_at_, on)) {
+    for (auto i : elements_at(tets_at_, near)) {
       const auto& t = T_[i];
       int count = on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]];
       if (count < 2) continue;
