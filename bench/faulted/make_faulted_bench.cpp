@@ -156,6 +156,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: make_faulted_bench DIR [--coarsen K] [--history]\n");
     return 2;
   }
+  // The first argument is the folder to write: an option there (--help) would become a folder.
+  if (argv[1][0] == '-') {
+    std::fprintf(stderr, "usage: make_faulted_bench DIR [--coarsen K] [--history]\n");
+    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
+  }
   const fs::path dir = argv[1];
   const double h = 100.0 * coarsen;
   // Snaps a coordinate to the grid line nearest to it (origin o).

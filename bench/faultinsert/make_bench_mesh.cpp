@@ -11,6 +11,7 @@
 //
 //   make_faultinsert_bench DIR
 #include <cstdio>
+#include <string>
 #include <filesystem>
 #include <fstream>
 
@@ -41,6 +42,11 @@ int main(int argc, char** argv) {
   if (argc != 2) {
     std::fprintf(stderr, "usage: make_faultinsert_bench DIR\n");
     return 2;
+  }
+  // The first argument is the folder to write: an option there (--help) would become a folder.
+  if (argv[1][0] == '-') {
+    std::fprintf(stderr, "usage: make_faultinsert_bench DIR\n");
+    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
   }
   const std::filesystem::path dir = argv[1];
   std::filesystem::create_directories(dir);

@@ -44,6 +44,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: make_bench_case DIR [N] [SCHEDULE.csv]\n");
     return 2;
   }
+  // The first argument is the folder to write: an option there (--help) would become a folder.
+  if (argv[1][0] == '-') {
+    std::fprintf(stderr, "usage: make_bench_case DIR [N] [SCHEDULE.csv]\n");
+    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
+  }
   const std::filesystem::path dir = argv[1];
   const int n = argc > 2 ? std::stoi(argv[2]) : 114;
   std::filesystem::create_directories(dir);

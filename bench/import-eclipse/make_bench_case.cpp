@@ -19,6 +19,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s DIR NX NY NZ STEPS HEXES_X HEXES_Y HEXES_Z\n", argv[0]);
     return 2;
   }
+  // The first argument is the folder to write: an option there (--help) would become a folder.
+  if (argv[1][0] == '-') {
+    std::fprintf(stderr, "usage: %s DIR NX NY NZ STEPS HEXES_X HEXES_Y HEXES_Z\n", argv[0]);
+    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
+  }
   const std::string dir = argv[1];
   const int nx = std::stoi(argv[2]), ny = std::stoi(argv[3]), nz = std::stoi(argv[4]), steps = std::stoi(argv[5]);
   const double dx = 50, dy = 50, dz = 2;

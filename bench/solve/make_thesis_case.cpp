@@ -147,6 +147,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: make_thesis_case DIR [--linear | --history] [--scale F]\n");
     return 2;
   }
+  // The first argument is the folder to write: an option there (--help) would become a folder.
+  if (argv[1][0] == '-') {
+    std::fprintf(stderr, "usage: make_thesis_case DIR [--linear | --history] [--scale F]\n");
+    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
+  }
   const fs::path dir = argv[1];
   bool history = false, linear = false;
   double scale = 1.0;
