@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <map>
+#include <regex>
 
 #include "ensemble_box.hpp"
 #include "ugs/ensemble/metrics.hpp"
@@ -25,6 +26,9 @@ const std::string kParams = test::kParamPoolC + test::kParamTolerance;
 
 fs::path make_box() { return test::make_ensemble_box("ensemble-solve"); }
 
+// The misfit adds the east-west series of Pool C's nine points at half weight (ugs-calibrate's misfit).
+std::string east(const fs::path& dir) { return " --measured-east " + (dir / "east.csv").string() + " --east-weight 0.5 "; }
+
 std::string ens_cmd(const fs::path& dir, const std::string& mode, const std::string& spec, const std::string& extra) {
   return test::ensemble_cmd(dir, mode, spec, extra);
 }
@@ -39,7 +43,7 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   test::spit(dir / "morris.toml", "[design]\nmethod = \"morris\"\nmembers = 9\nlevels = 4\nseed = 3\n" + kParams);
 
   // 1. Morris: 3 trajectories of 3 members.
-  const auto r = test::run(ens_cmd(dir, "run", "morris.toml", "-j 2 -o " + (dir / "out").string()));
+  const auto r = test::run(ens_cmd(dir, "run", "morris.toml", east(dir) + "-j 2 -o " + (dir / "out").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CsvTable m = CsvTable::read((dir / "out" / "morris.csv").string());
   ASSERT_GT(m.rows(), 0u);
@@ -96,13 +100,20 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   ro.model_crs = insar::model_crs("", (dir / "case.toml").string());
   mo.ps = insar::read_ps((dir / "up.csv").string(), ro);
   mo.window = insar::parse_window("2009-01-01/2014-12-31", "--window");
+  const double vertical_only = ensemble::member_metrics((dir / "single").string(), mo).back().second;
+  mo.ps_east = insar::read_ps((dir / "east.csv").string(), ro);
+  mo.east_weight = 0.5;
   const ensemble::Metrics single = ensemble::member_metrics((dir / "single").string(), mo);
   ASSERT_EQ(single.size(), 5u);  // uplift, settlement, at the PS points too, and the misfit
   EXPECT_EQ(single.back().first, "insar_rms_mm");
   for (const auto& [name, v] : single) EXPECT_EQ(mem.number(0, mem.column(name)), v) << name;
+  // The east series count: 11 vertical and 9 east series at 1.5 mm noise each, so the misfit moves.
+  EXPECT_NE(single.back().second, vertical_only);
+  EXPECT_GT(single.back().second, 0.5);
+  EXPECT_GT(vertical_only, 0.5);
 
   // 3. A rerun runs nothing and writes the same bytes.
-  const auto again = test::run(ens_cmd(dir, "run", "morris.toml", "-j 2 -o " + (dir / "out2").string() + " --cache-dir " +
+  const auto again = test::run(ens_cmd(dir, "run", "morris.toml", east(dir) + "-j 2 -o " + (dir / "out2").string() + " --cache-dir " +
                                                                        (dir / "out.cache").string()));
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(std::count(again.err.begin(), again.err.end(), '\n') >= 9, true);
@@ -112,8 +123,8 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
 
   // 4. The emitted Makefile, run by make into a fresh cache, reproduces a local run.
   test::spit(dir / "lhs.toml", std::string("[design]\nmethod = \"lhs\"\nmembers = 3\nseed = 9\n") + kParams);
-  ASSERT_EQ(test::run(ens_cmd(dir, "run", "lhs.toml", "-j 2 -o " + (dir / "local").string())).exit_code, 0);
-  const auto e = test::run(ens_cmd(dir, "run", "lhs.toml", "--emit make --cache-dir " + (dir / "make.cache").string() + " -o " +
+  ASSERT_EQ(test::run(ens_cmd(dir, "run", "lhs.toml", east(dir) + "-j 2 -o " + (dir / "local").string())).exit_code, 0);
+  const auto e = test::run(ens_cmd(dir, "run", "lhs.toml", east(dir) + "--emit make --cache-dir " + (dir / "make.cache").string() + " -o " +
                                                                (dir / "members.mk").string()));
   ASSERT_EQ(e.exit_code, 0) << e.err;
   const auto mk = test::run("make -s -f " + (dir / "members.mk").string() + " -j 2 collect");
@@ -179,6 +190,14 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   const auto fw = test::run(ens_cmd(dir, "run", "few.toml", "-o " + (dir / "bad").string()));
   EXPECT_TRUE(one_line(fw)) << fw.err;
   EXPECT_NE(fw.err.find("fewer than the sobol design needs"), std::string::npos) << fw.err;
+  // East-west series of no point of --measured, and a negative weight.
+  test::spit(dir / "east_other.csv", std::regex_replace(test::slurp(dir / "east.csv"), std::regex("\\bC([0-9])([0-9])\\b"), "X$1$2"));
+  const auto eo = test::run(ens_cmd(dir, "run", "lhs.toml", "--measured-east " + (dir / "east_other.csv").string() + " -o " + (dir / "bad").string()));
+  EXPECT_TRUE(one_line(eo)) << eo.err;
+  EXPECT_NE(eo.err.find("has none of the PS points of --measured"), std::string::npos) << eo.err;
+  const auto ew = test::run(ens_cmd(dir, "run", "lhs.toml", "--measured-east " + (dir / "east.csv").string() + " --east-weight -1 -o " + (dir / "bad").string()));
+  EXPECT_TRUE(one_line(ew)) << ew.err;
+  EXPECT_NE(ew.err.find("--east-weight"), std::string::npos) << ew.err;
   EXPECT_FALSE(fs::exists(dir / "bad"));
   EXPECT_FALSE(fs::exists(dir / "bad.cache"));
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(dir);

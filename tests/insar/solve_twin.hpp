@@ -36,6 +36,9 @@ inline std::filesystem::path make_truth(const std::string& tag) {
   for (auto t : solve_box_dates())
     if (t >= days_from_civil(2009, 1, 1) * 86400) dates.push_back(t);
   write_twin_egms((dir / "truth_top.h5").string(), pts, dates, 2, 1.5, 1948, (dir / "up.csv").string());
+  // East-west series of the nine Pool C points only (a misfit adds them where they exist).
+  write_twin_egms((dir / "truth_top.h5").string(), std::vector<TwinPoint>(pts.begin(), pts.begin() + 9), dates, 0, 1.5, 2015,
+                  (dir / "east.csv").string());
   return dir;
 }
 

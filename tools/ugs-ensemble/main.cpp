@@ -11,6 +11,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <limits>
+
+#include <fmt/format.h>
 
 #include "ugs/cli/tool.hpp"
 #include "ugs/ensemble/collect.hpp"
@@ -36,7 +39,8 @@ struct Options {
   Emit emit = Emit::none;
   std::string spec, case_file, solver_command, mesh, cache_dir, output;
   std::vector<std::string> phases;
-  std::string inside, inside_where, measured, points_crs, crs, id_column, window, field;
+  std::string inside, inside_where, measured, measured_east, points_crs, crs, id_column, window, field;
+  double east_weight = 1.0;
   int jobs = 1;
   std::size_t member = 0;  // 1-based; 0 = all
 };
@@ -62,6 +66,8 @@ std::string command_for(const Options& o, const std::string& mode) {
   add("--inside", o.inside, true);
   add("--inside-where", o.inside_where, false);
   add("--measured", o.measured, true);
+  add("--measured-east", o.measured_east, true);
+  if (!o.measured_east.empty()) add("--east-weight", fmt::format("{}", o.east_weight), false);
   add("--points-crs", o.points_crs, false);
   add("--crs", o.crs, false);
   add("--id-column", o.id_column, false);
@@ -83,6 +89,16 @@ MetricOptions metric_options(const Options& o) {
     ro.points_crs = o.points_crs;
     ro.id_column = o.id_column;
     m.ps = insar::read_ps_in_model(o.measured, ro);
+    if (!o.measured_east.empty()) {
+      // The east series of the points that have one (ugs-calibrate's rule).
+      const insar::PsData e = insar::read_ps_in_model(o.measured_east, ro);
+      std::vector<std::string> have;
+      for (const auto& p : m.ps->points)
+        if (e.find(p.id)) have.push_back(p.id);
+      if (have.empty()) throw InputError(o.measured_east, "has none of the PS points of --measured");
+      m.ps_east = insar::select_points(e, have);
+      m.east_weight = o.east_weight;
+    }
   }
   return m;
 }
@@ -173,6 +189,8 @@ int main(int argc, char** argv) {
   app.add_option("--inside", o.inside, "Surface metrics only inside these polygons (any OGR file, e.g. the reservoir trace)");
   app.add_option("--inside-where", o.inside_where, "OGR attribute filter on the --inside polygons");
   app.add_option("--measured", o.measured, "PS points (EGMS CSV, CSV or OGR): metrics at them, and the InSAR misfit if they have series");
+  app.add_option("--measured-east", o.measured_east, "East-west series of the --measured points, added to the misfit with --east-weight");
+  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")->capture_default_str();
   app.add_option("--window", o.window, "Dates of the misfit, START/END (ISO; either may be empty)");
   app.add_option("--points-crs", o.points_crs, "CRS of the PS coordinates (default: EPSG:3035 for EGMS)");
   app.add_option("--crs", o.crs, "Model CRS (default: the case file's crs)");
@@ -190,6 +208,9 @@ int main(int argc, char** argv) {
     if (o.member && (o.mode != Mode::run || o.emit != Emit::none))
       throw InputError("--member", "runs one member: only with the run mode and without --emit");
     if (o.output == "-") throw InputError("-o", "an output folder (or file for --emit) is needed, not stdout");
+    if (!o.measured_east.empty() && o.measured.empty())
+      throw InputError("--measured-east", "needs the PS points of --measured (the east series adds to their misfit)");
+    insar::check_option("--east-weight", o.east_weight, 0, std::numeric_limits<double>::max());
     run(o, tool);
   });
 }

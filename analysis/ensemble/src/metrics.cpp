@@ -96,7 +96,15 @@ void surface_metrics(const std::string& h5, const MetricOptions& o, MemberOutput
   }
   if (o.ps && o.ps->has_series()) {
     const insar::Samples s = insar::sample_displacement(res, ps, o.ps->dates, std::nullopt);
-    const insar::Misfit m = insar::combine_misfits(insar::series_misfits(*o.ps, s, 2, o.window), {}, 0.0);
+    // Vertical, plus the east-west series when given: the misfit ugs-calibrate minimises.
+    std::vector<insar::SeriesMisfit> east;
+    if (o.ps_east && o.ps_east->has_series()) {
+      const insar::SurfaceLocator loc(top);
+      const auto pe = insar::locate_points(loc, o.ps_east->points, false).sampled;
+      east = insar::series_misfits(*o.ps_east, insar::sample_displacement(res, pe, o.ps_east->dates, std::nullopt), 0, o.window);
+    }
+    const insar::Misfit m =
+        insar::combine_misfits(insar::series_misfits(*o.ps, s, 2, o.window), std::move(east), o.ps_east ? o.east_weight : 0.0);
     out.emplace_back("insar_rms_mm", m.rms_mm);
     // The series relative to the first PS date the results reach.
     std::size_t first = s.dates.size();

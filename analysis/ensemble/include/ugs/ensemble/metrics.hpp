@@ -35,6 +35,8 @@ struct MetricOptions {
   std::vector<Phase> phases;                        // empty: one phase "all", first to last result step
   std::optional<geo::PolygonSet> trace;             // restricts the surface metrics
   std::optional<insar::PsData> ps;                  // PS points (model CRS) and measured series
+  std::optional<insar::PsData> ps_east;             // east-west series of some of those points
+  double east_weight = 1.0;                         // of the east residuals (ugs-calibrate's misfit)
   insar::MisfitWindow window;
   std::string field;                                // displacement field ("" = u, else u_mm)
 };
