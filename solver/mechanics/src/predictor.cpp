@@ -7,14 +7,11 @@ namespace ugs::mech {
 Predictor::~Predictor() {
   if (aw_) VecDestroy(&aw_);
   for (Vec& v : basis_) VecDestroy(&v);
-  for (Vec& v : abasis_) VecDestroy(&v);
 }
 
 void Predictor::release() {
   for (Vec& v : basis_) UGS_PETSC(VecDestroy(&v));
-  for (Vec& v : abasis_) UGS_PETSC(VecDestroy(&v));
   basis_.clear();
-  abasis_.clear();
 }
 
 void Predictor::setup(Vec u) {
@@ -66,75 +63,64 @@ void Predictor::refresh(Mat A) {
   const int m = static_cast<int>(basis_.size());
   if (m == 0) return;
   PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
-  for (int j = 0; j < m; ++j) UGS_PETSC(MatMult(A, basis_[j], abasis_[j]));
+  // G = W^T A W, one column per product A w_j (in aw_: A W is not kept, 24 vectors less).
   Eigen::MatrixXd G(m, m);
   std::vector<PetscScalar> dots(m);
   for (int j = 0; j < m; ++j) {
-    UGS_PETSC(VecMDot(abasis_[j], m, basis_.data(), dots.data()));
+    UGS_PETSC(MatMult(A, basis_[j], aw_));
+    UGS_PETSC(VecMDot(aw_, m, basis_.data(), dots.data()));
     for (int i = 0; i < m; ++i) G(i, j) = dots[i];
   }
   G = 0.5 * (G + G.transpose());
   // W <- W V diag(lambda)^-1/2 over the eigenpairs above a cutoff (drops dependent directions).
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G);
   const Eigen::VectorXd lam = es.eigenvalues();
-  std::vector<Vec> nb, nab;
+  std::vector<Vec> nb;
   for (int k = m - 1; k >= 0; --k) {
     if (!(lam(k) > 1e-10 * lam(m - 1))) break;
-    Vec w, aw_k;
+    Vec w;
     UGS_PETSC(VecDuplicate(like_, &w));
-    UGS_PETSC(VecDuplicate(like_, &aw_k));
     std::vector<PetscScalar> coef(m);
     for (int i = 0; i < m; ++i) coef[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
     UGS_PETSC(VecSet(w, 0.0));
-    UGS_PETSC(VecSet(aw_k, 0.0));
     UGS_PETSC(VecMAXPY(w, m, coef.data(), basis_.data()));
-    UGS_PETSC(VecMAXPY(aw_k, m, coef.data(), abasis_.data()));
     nb.push_back(w);
-    nab.push_back(aw_k);
   }
   for (Vec& v : basis_) UGS_PETSC(VecDestroy(&v));
-  for (Vec& v : abasis_) UGS_PETSC(VecDestroy(&v));
   basis_ = std::move(nb);
-  abasis_ = std::move(nab);
   PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
 }
 
 void Predictor::remember(Mat A, Vec v) {
-  Vec av;
-  UGS_PETSC(VecDuplicate(like_, &av));
-  UGS_PETSC(MatMult(A, v, av));
+  // A v in aw_, recomputed after each Gram-Schmidt pass (two products more per step instead of
+  // keeping A W: 24 vectors of the size of u).
+  UGS_PETSC(MatMult(A, v, aw_));
   PetscScalar n0 = 0;
-  UGS_PETSC(VecDot(v, av, &n0));
+  UGS_PETSC(VecDot(v, aw_, &n0));
   if (!(n0 > 0)) {
     UGS_PETSC(VecDestroy(&v));
-    UGS_PETSC(VecDestroy(&av));
     return;
   }
   const int m = static_cast<int>(basis_.size());
   for (int pass = 0; pass < 2 && m > 0; ++pass) {
     std::vector<PetscScalar> c(m);
-    UGS_PETSC(VecMDot(av, m, basis_.data(), c.data()));  // W^T A v
+    UGS_PETSC(VecMDot(aw_, m, basis_.data(), c.data()));  // W^T A v
     for (auto& x : c) x = -x;
     UGS_PETSC(VecMAXPY(v, m, c.data(), basis_.data()));
-    UGS_PETSC(VecMAXPY(av, m, c.data(), abasis_.data()));
+    UGS_PETSC(MatMult(A, v, aw_));
   }
   PetscScalar n1 = 0;
-  UGS_PETSC(VecDot(v, av, &n1));
+  UGS_PETSC(VecDot(v, aw_, &n1));
   if (!(n1 > 1e-14 * n0)) {
     UGS_PETSC(VecDestroy(&v));
-    UGS_PETSC(VecDestroy(&av));
     return;
   }
   UGS_PETSC(VecScale(v, 1.0 / std::sqrt(n1)));
-  UGS_PETSC(VecScale(av, 1.0 / std::sqrt(n1)));
   if (static_cast<int>(basis_.size()) == kRecycle) {
     UGS_PETSC(VecDestroy(&basis_.front()));
-    UGS_PETSC(VecDestroy(&abasis_.front()));
     basis_.erase(basis_.begin());
-    abasis_.erase(abasis_.begin());
   }
   basis_.push_back(v);
-  abasis_.push_back(av);
 }
 
 }  // namespace ugs::mech

@@ -144,10 +144,11 @@ struct LinearSolveResult {
 // Predictor of Newton's first correction (predictor.cpp). The increments of earlier steps span
 // most of a new one (the seasonal cycles repeat and the flow fields are smooth in time): the first
 // Newton correction starts from the Galerkin projection on them. The basis W is A-orthonormal
-// (W^T A W = I) and A W is kept, so the projection du0 = W (W^T r) costs dot products only. W is
-// orthonormal for the matrix it was built with; when the matrix changes it stays a good (no longer
-// optimal) guess until the preconditioner is rebuilt, when A W is recomputed and W
-// re-orthonormalized (refresh). The prediction is used only when it reduces the residual
+// (W^T A W = I), so the projection du0 = W (W^T r) costs dot products only. A W is not kept (24
+// vectors of the size of u): A v is recomputed when a direction is added, A w_j when W is
+// re-orthonormalized. W is orthonormal for the matrix it was built with; when the matrix changes it
+// stays a good (no longer optimal) guess until the preconditioner is rebuilt, when W is
+// re-orthonormalized for the new matrix (refresh). The prediction is used only when it reduces the residual
 // (||r - A du0|| < ||r||); otherwise the basis is refreshed for the current matrix and the
 // projection tried again, else dropped.
 // It reads the matrix and vectors it is given and changes only du and its own basis.
@@ -175,8 +176,8 @@ class Predictor {
   static constexpr int kRecycle = 24;
   // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw_).
   double projection_residual(Mat A, Vec r, Vec du);
-  std::vector<Vec> basis_, abasis_;  // W (A-orthonormal) and A W
-  Vec aw_ = nullptr;
+  std::vector<Vec> basis_;  // W (A-orthonormal); A W is not kept (recomputed where needed)
+  Vec aw_ = nullptr;        // work vector: A du, A v, A w_j
   Vec like_ = nullptr;  // u: the layout of new basis vectors (not owned)
   double predicted_ = -1;
 };
