@@ -60,6 +60,60 @@ struct Surfaces {
   std::vector<Line> lines;
 };
 
+// Which faces through a node are surfaces and which of their edges at the node may be feature lines
+// (surfaces_of's first part: incidences only). at_edge is sorted by (group, w, order).
+struct EdgeFace {
+  std::uint64_t group;
+  std::uint32_t w;      // the edge's other node
+  std::uint32_t order;  // position among the edges met
+  std::uint32_t face;   // index in faces
+  std::uint32_t third;  // the face's third node
+};
+struct SurfaceTopology {
+  bool known = false;
+  std::vector<std::pair<std::uint64_t, Face>> faces;  // (group, face)
+  std::vector<EdgeFace> at_edge;
+};
+
+// A node's surfaces kept between the requests of a pass and across passes: one entry per node
+// asked for (a slot per node; a deque, so that entries stay put while it grows), computed again
+// when the caller's freshness test says that something it depends on changed after `time`.
+class SurfaceCache {
+public:
+  void reset(std::size_t nodes) {
+    slot_.assign(nodes, 0);
+    entries_.clear();
+  }
+  // v's surfaces, nullptr when they cannot be computed (a degenerate face). fresh(time): is the entry
+  // computed at `time` still valid; compute(SurfaceTopology&, Surfaces&) -> bool fills them (the
+  // topology is the entry's own, kept for a caller whose incidences do not change); `now` stamps it.
+  template <class Fresh, class Compute>
+  const Surfaces* get(std::uint32_t v, std::uint64_t now, Fresh&& fresh, Compute&& compute) {
+    if (slot_[v] == 0) {
+      entries_.emplace_back();
+      slot_[v] = static_cast<std::uint32_t>(entries_.size());
+    } else if (const Entry& c = entries_[slot_[v] - 1]; fresh(c.time)) {
+      return c.ok ? &c.s : nullptr;
+    }
+    Entry& c = entries_[slot_[v] - 1];
+    c.s.planes.clear();
+    c.s.lines.clear();
+    c.ok = compute(c.topology, c.s);
+    c.time = now;
+    return c.ok ? &c.s : nullptr;
+  }
+
+private:
+  struct Entry {
+    bool ok = false;
+    SurfaceTopology topology;
+    Surfaces s;
+    std::uint64_t time = 0;
+  };
+  std::vector<std::uint32_t> slot_;  // per node: 1 + its entry, 0 none
+  std::deque<Entry> entries_;
+};
+
 class BandImprover {
 public:
   BandImprover(ElementSoup s, std::size_t first_new, double ratio, double smooth_below, double tol)
@@ -71,7 +125,7 @@ public:
     find_band();
     tri_dead_.assign(s_.tris.size(), 0);
     node_dead_.assign(s_.nodes.size(), 0);
-    surf_slot_.assign(s_.nodes.size(), 0);
+    collapse_surfaces_.reset(s_.nodes.size());
     changed_at_.assign(s_.nodes.size(), 0);
     if (ratio_ > 0)
       for (int pass = 0; pass < 10; ++pass) {
@@ -79,7 +133,7 @@ public:
         r.collapsed += n;
         if (n == 0) break;
       }
-    smooth_slot_.assign(s_.nodes.size(), 0);
+    smoothing_surfaces_.reset(s_.nodes.size());
     moved_at_.assign(s_.nodes.size(), 0);
     smooth_failed_.assign(s_.nodes.size(), kNever);
     tet_q_.assign(s_.tets.size(), 0.0);
@@ -157,20 +211,28 @@ private:
   // around it (a face holding v belongs to tetrahedra holding v, so the counts are exact); its
   // feature lines: edges of a surface group used by other than two faces, or by two faces that are
   // not coplanar. nullopt-like: returns false when a face is degenerate (v stays).
+  // In two parts: which faces and edges (incidences only: the smoothing computes them once per
+  // node) and their planes and creases (node positions).
   bool surfaces_of(std::uint32_t v, Surfaces& out) const {
+    topology_of(v, scratch_.topology);
+    return geometry_of(v, scratch_.topology, out);
+  }
+
+  void topology_of(std::uint32_t v, SurfaceTopology& topo) const {
     // Flat sorted vectors rather than maps: this runs for every node the collapse and the smoothing
     // look at (millions of calls at the thesis scale), and the sets are a few dozen entries.
     // Scratch arrays kept between calls (malloc and free were about 7 % of the samples).
-    auto& faces = scratch_.faces;
+    auto& faces = topo.faces;
+    auto& at_edge = topo.at_edge;
     auto& around = scratch_.around;
     auto& between = scratch_.between;
     auto& outer = scratch_.outer;
-    auto& at_edge = scratch_.at_edge;
     faces.clear();
+    at_edge.clear();
     around.clear();
     between.clear();
     outer.clear();
-    at_edge.clear();
+    topo.known = true;
     for (auto i : tris_of_[v]) faces.push_back({s_.tri_group[i], s_.tris[i]});
     for (auto t : tets_of_[v])
       for (const auto& f : kFaceOf) {
@@ -198,29 +260,40 @@ private:
     std::sort(between.begin(), between.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& b : between) faces.push_back(b.second);
     faces.insert(faces.end(), outer.begin(), outer.end());
+    // Per (group, edge v-w): the faces and their third nodes.
+    for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+      const auto& [g, f] = faces[fi];
+      for (int k = 0; k < 3; ++k)
+        if (f[k] != v)
+          at_edge.push_back({g, f[k], static_cast<std::uint32_t>(at_edge.size()), static_cast<std::uint32_t>(fi),
+                             f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
+    }
+    std::sort(at_edge.begin(), at_edge.end(), [](const EdgeFace& a, const EdgeFace& b) {
+      return std::tie(a.group, a.w, a.order) < std::tie(b.group, b.w, b.order);
+    });
+  }
+
+  bool geometry_of(std::uint32_t v, const SurfaceTopology& topo, Surfaces& out) const {
     auto exact = [&](std::uint64_t g) { return !(g >= s_.first_fault_group && g < (std::uint64_t{1} << 62)); };
-    // Per (group, edge v-w): the faces' normals and third nodes.
-    for (const auto& [g, f] : faces) {
+    auto& normal = scratch_.normal;  // of each face
+    normal.clear();
+    for (const auto& [g, f] : topo.faces) {
       const Point3 n = cross(sub(X(f[1]), X(f[0])), sub(X(f[2]), X(f[0])));
       const double nn = norm(n);
       if (!(nn > 0)) return false;
       const Point3 u = scaled(n, 1 / nn);
       out.planes.push_back({X(f[0]), u, exact(g)});
-      for (int k = 0; k < 3; ++k)
-        if (f[k] != v)
-          at_edge.push_back({g, f[k], static_cast<std::uint32_t>(at_edge.size()), u, f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
+      normal.push_back(u);
     }
-    std::sort(at_edge.begin(), at_edge.end(), [](const EdgeFace& a, const EdgeFace& b) {
-      return std::tie(a.group, a.w, a.order) < std::tie(b.group, b.w, b.order);
-    });
     // A crease: the two faces' third nodes off each other's plane (by more than the tolerance on a
     // fault, by more than rounding elsewhere).
+    const auto& at_edge = topo.at_edge;
     for (std::size_t i = 0; i < at_edge.size();) {
       std::size_t j = i + 1;
       while (j < at_edge.size() && at_edge[j].group == at_edge[i].group && at_edge[j].w == at_edge[i].w) ++j;
       const double t = exact(at_edge[i].group) ? round_ : tol_;
-      if (j - i != 2 || std::abs(dot(at_edge[i].n, sub(X(at_edge[i + 1].third), X(v)))) > t ||
-          std::abs(dot(at_edge[i + 1].n, sub(X(at_edge[i].third), X(v)))) > t) {
+      if (j - i != 2 || std::abs(dot(normal[at_edge[i].face], sub(X(at_edge[i + 1].third), X(v)))) > t ||
+          std::abs(dot(normal[at_edge[i + 1].face], sub(X(at_edge[i].third), X(v)))) > t) {
         const Point3 d = sub(X(at_edge[i].w), X(v));
         out.lines.push_back({scaled(d, 1 / norm(d)), exact(at_edge[i].group)});
       }
@@ -313,19 +386,9 @@ private:
   // after a collapse changed the node's tetrahedra or moved one of their nodes: they depend on
   // nothing else (tets_of_ lists are sorted, so a rebuilt list of the same tetrahedra is the same).
   const Surfaces* cached_surfaces_of(std::uint32_t v) {
-    if (surf_slot_[v] == 0) {
-      surf_cache_.emplace_back();
-      surf_slot_[v] = static_cast<std::uint32_t>(surf_cache_.size());
-    } else if (changed_at_[v] <= surf_cache_[surf_slot_[v] - 1].time) {
-      const auto& c = surf_cache_[surf_slot_[v] - 1];
-      return c.ok ? &c.s : nullptr;
-    }
-    auto& c = surf_cache_[surf_slot_[v] - 1];
-    c.s.planes.clear();
-    c.s.lines.clear();
-    c.ok = surfaces_of(v, c.s);
-    c.time = changes_;
-    return c.ok ? &c.s : nullptr;
+    return collapse_surfaces_.get(
+        v, changes_, [&](std::uint64_t time) { return changed_at_[v] <= time; },
+        [&](SurfaceTopology&, Surfaces& out) { return surfaces_of(v, out); });
   }
 
   bool lies_on(const Surfaces& s, std::uint32_t from, std::uint32_t a) const {
@@ -536,30 +599,14 @@ private:
   }
 
   // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
-  // surfaces stay as computed until v or a node of its tetrahedra or triangles moves.
+  // surfaces stay as computed until v or a node of its tetrahedra or triangles moves, and then only
+  // their planes and creases are computed again (the faces and edges, sorted once per node).
   const Surfaces* smoothing_surfaces_of(std::uint32_t v) {
-    auto fresh = [&](const SurfEntry& c) {
-      for (auto t : tets_of_[v])
-        for (auto w : s_.tets[t])
-          if (moved_at_[w] > c.time) return false;
-      for (auto i : tris_of_[v])
-        for (auto w : s_.tris[i])
-          if (moved_at_[w] > c.time) return false;
-      return true;
-    };
-    if (smooth_slot_[v] == 0) {
-      smooth_cache_.emplace_back();
-      smooth_slot_[v] = static_cast<std::uint32_t>(smooth_cache_.size());
-    } else if (fresh(smooth_cache_[smooth_slot_[v] - 1])) {
-      const auto& c = smooth_cache_[smooth_slot_[v] - 1];
-      return c.ok ? &c.s : nullptr;
-    }
-    auto& c = smooth_cache_[smooth_slot_[v] - 1];
-    c.s.planes.clear();
-    c.s.lines.clear();
-    c.ok = surfaces_of(v, c.s);
-    c.time = moves_;
-    return c.ok ? &c.s : nullptr;
+    return smoothing_surfaces_.get(
+        v, moves_, [&](std::uint64_t time) { return !moved_around(v, time); }, [&](SurfaceTopology& topo, Surfaces& out) {
+          if (!topo.known) topology_of(v, topo);
+          return geometry_of(v, topo, out);
+        });
   }
 
   // A tetrahedron's smallest dihedral angle during the smoothing, kept until one of its nodes
@@ -682,27 +729,15 @@ private:
     std::uint32_t block;
     std::uint32_t order;  // position among the faces met, for the pairing in surfaces_of
   };
-  struct EdgeFace {
-    std::uint64_t group;
-    std::uint32_t w;
-    std::uint32_t order;
-    Point3 n;
-    std::uint32_t third;
-  };
   struct Scratch {
-    std::vector<std::pair<std::uint64_t, Face>> faces, outer;
+    SurfaceTopology topology;
+    std::vector<std::pair<std::uint64_t, Face>> outer;
     std::vector<Around> around;
     std::vector<std::pair<std::uint32_t, std::pair<std::uint64_t, Face>>> between;
-    std::vector<EdgeFace> at_edge;
+    std::vector<Point3> normal;
   };
   mutable Scratch scratch_;  // surfaces_of's arrays
-  struct SurfEntry {
-    bool ok = false;
-    Surfaces s;
-    std::uint64_t time = 0;  // changes_ (collapse) or moves_ (smoothing) when computed
-  };
-  std::vector<std::uint32_t> smooth_slot_;     // per node: 1 + its entry in smooth_cache_, 0 none
-  std::deque<SurfEntry> smooth_cache_;
+  SurfaceCache smoothing_surfaces_;             // stamped with moves_
   std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
   std::uint64_t moves_ = 0;
   std::vector<std::uint64_t> smooth_failed_;   // per node: moves_ when its last smoothing step failed, kNever none
@@ -711,8 +746,7 @@ private:
   std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
   std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
   std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
-  std::vector<std::uint32_t> surf_slot_;   // per node: 1 + its entry in surf_cache_, 0 none
-  std::deque<SurfEntry> surf_cache_;       // deque: entries stay put while it grows
+  SurfaceCache collapse_surfaces_;         // stamped with changes_
   std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
   std::uint64_t changes_ = 0;              // successful collapses so far
   std::unordered_map<std::uint64_t, std::uint64_t> failed_at_;  // (b << 32 | a) -> changes_ when its collapse failed
