@@ -157,9 +157,10 @@ private:
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
   // neighbours, and the cut is held to the bound where the input was better.
   double score(std::uint32_t t, const Tet& e) const { return score_of(t, quality(e)); }
-  double score_of(std::uint32_t t, double q) const {
+  double score_of(std::uint32_t t, double q) const { return q / score_per(t); }
+  double score_per(std::uint32_t t) const {
     const double ref = std::min(s_.bound_deg, s_.parent.quality(s_.tet_parent[t]));
-    return q / std::max(ref, 1e-9);
+    return std::max(ref, 1e-9);
   }
   bool in_band(const Tet& t) const {
     return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
@@ -183,28 +184,39 @@ private:
 
   // Incidences of the nodes flagged in `want` (alive elements only), in increasing order.
   // Only the lists of the previous call's nodes are emptied (not half a million per pass: freeing
-  // and zeroing them cost more than the lists themselves).
-  void build_adjacency(const std::vector<char>& want) {
+  // and zeroing them cost more than the lists themselves). `kept`: no incidence changed since the
+  // previous call (the smoothing's passes), so the lists made then are still right and only the
+  // nodes without one get theirs (the others' lists are not read: every caller asks about `want`).
+  void build_adjacency(const std::vector<char>& want, bool kept = false) {
     tets_of_.resize(s_.nodes.size());
     tris_of_.resize(s_.nodes.size());
-    for (auto v : listed_) {
-      tets_of_[v].clear();
-      tris_of_[v].clear();
+    listed_at_.resize(s_.nodes.size(), 0);
+    if (!kept) {
+      for (auto v : listed_) {
+        tets_of_[v].clear();
+        tris_of_[v].clear();
+        listed_at_[v] = 0;
+      }
+      listed_.clear();
     }
-    listed_.clear();
+    const std::size_t first = listed_.size();
     for (std::size_t v = 0; v < want.size(); ++v) {
-      if (!want[v]) continue;
+      if (!want[v] || listed_at_[v]) continue;
       listed_.push_back(static_cast<std::uint32_t>(v));
+      listed_at_[v] = 1;
       auto& l = tets_of_[v];
       for (auto t : around_[v])
         if (!tet_dead_[t] && has(s_.tets[t], static_cast<std::uint32_t>(v))) l.push_back(t);
       std::sort(l.begin(), l.end());
       l.erase(std::unique(l.begin(), l.end()), l.end());
     }
+    if (first == listed_.size()) return;
+    std::vector<char> now(want.size(), 0);  // the nodes listed by this call
+    for (std::size_t k = first; k < listed_.size(); ++k) now[listed_[k]] = 1;
     for (std::size_t i = 0; i < s_.tris.size(); ++i)
       if (!tri_dead_[i])
         for (auto v : s_.tris[i])
-          if (want[v]) tris_of_[v].push_back(static_cast<std::uint32_t>(i));
+          if (now[v]) tris_of_[v].push_back(static_cast<std::uint32_t>(i));
   }
 
   // The surfaces through v: its triangles, the faces between two materials and the outer faces
@@ -315,7 +327,7 @@ private:
           if (node_faults_[v].empty()) on_fault_.push_back(v);
           if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
         }
-    for (auto& g : node_faults_) std::sort(g.begin(), g.end());
+    for (auto v : on_fault_) std::sort(node_faults_[v].begin(), node_faults_[v].end());  // the others are empty
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const auto& e = s_.tets[t];
@@ -560,12 +572,19 @@ private:
     std::vector<char> want(s_.nodes.size(), 0);
     std::vector<std::pair<double, std::uint32_t>> order;  // (worst score, node)
     std::vector<double> worst(s_.nodes.size(), 180);
-    for (auto t : band_) {
-      if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
-      const double qa = smoothing_quality(static_cast<std::uint32_t>(t));
-      const double q = score_of(static_cast<std::uint32_t>(t), qa);
+    if (smooth_band_.empty())
+      for (auto t : band_)
+        if (!tet_dead_[t] && in_band(s_.tets[t])) smooth_band_.push_back({s_.tets[t], t, score_per(t), 0.0, kNever});
+    for (auto& b : smooth_band_) {
+      const auto& e = b.e;
+      if (b.time == kNever || moved_at_[e[0]] > b.time || moved_at_[e[1]] > b.time || moved_at_[e[2]] > b.time || moved_at_[e[3]] > b.time) {
+        b.q = smoothing_quality(b.t);
+        b.time = moves_;
+      }
+      const double qa = b.q;
+      const double q = qa / b.per;  // score_of(b.t, qa)
       if (!(q < 1) && !(qa < smooth_below_)) continue;
-      for (auto v : s_.tets[t])
+      for (auto v : e)
         if (!node_dead_[v]) {
           want[v] = 1;
           worst[v] = std::min(worst[v], q);
@@ -575,7 +594,8 @@ private:
       if (want[v]) order.push_back({worst[v], static_cast<std::uint32_t>(v)});
     if (order.empty()) return 0;
     std::sort(order.begin(), order.end());
-    build_adjacency(want);
+    build_adjacency(want, smoothing_lists_);
+    smoothing_lists_ = true;
     std::size_t moved = 0;
     for (const auto& [q, v] : order) {
       if (smooth_failed_[v] != kNever && !moved_around(v, smooth_failed_[v])) continue;
@@ -743,6 +763,16 @@ private:
   std::vector<std::uint64_t> smooth_failed_;   // per node: moves_ when its last smoothing step failed, kNever none
   std::vector<std::uint32_t> nb_scratch_;
   static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+  // The band's tetrahedra during the smoothing (which changes no incidence), in band_'s order, with
+  // what the pass' scan needs in one place (it read five arrays of millions at random per tetrahedron).
+  struct SmoothBandTet {
+    Tet e;
+    std::uint32_t t;
+    double per;          // score_of(t, q) = q / per
+    double q;            // smoothing_quality(t) when computed
+    std::uint64_t time;  // moves_ then, kNever none
+  };
+  std::vector<SmoothBandTet> smooth_band_;
   std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
   std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
   std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
@@ -757,6 +787,8 @@ private:
   std::vector<char> tet_dead_, tri_dead_, node_dead_;
   std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;  // of the nodes of the last build_adjacency, else empty
   std::vector<std::uint32_t> listed_;                         // those nodes
+  std::vector<char> listed_at_;                               // per node: in listed_
+  bool smoothing_lists_ = false;                              // the smoothing has built its first lists
   std::vector<std::uint32_t> band_;                   // the band's tetrahedra at the start, increasing
   std::vector<std::vector<std::uint32_t>> around_;   // per band node: tetrahedra that held it (may be stale)
   std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
