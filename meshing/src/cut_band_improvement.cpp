@@ -5,7 +5,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <map>
 #include <set>
 #include <iterator>
 #include <tuple>
@@ -250,17 +249,19 @@ private:
       for (const auto& f : kFaceOf) {
         const Face tri{s_.tets[t][f[0]], s_.tets[t][f[1]], s_.tets[t][f[2]]};
         if (!has(tri, v)) continue;
-        around.push_back({sorted(tri), tri, s_.tet_block[t], static_cast<std::uint32_t>(around.size())});
+        // Sets of three holding v compare as their two other nodes do (the smallest node in one and
+        // not the other decides, and v is in both): one 64-bit key instead of three fields.
+        const std::uint32_t p = tri[0] == v ? tri[1] : tri[0], q = tri[2] == v ? tri[1] : tri[2];
+        const std::uint64_t key = (std::uint64_t{std::min(p, q)} << 32) | std::max(p, q);
+        around.push_back({key, tri, s_.tet_block[t], static_cast<std::uint32_t>(around.size())});
       }
-    // Field by field: std::array's == went through memcmp (6 % of the thesis bench's samples).
-    std::sort(around.begin(), around.end(), [](const Around& a, const Around& b) {
-      return std::tie(a.key[0], a.key[1], a.key[2], a.order) < std::tie(b.key[0], b.key[1], b.key[2], b.order);
-    });
+    std::sort(around.begin(), around.end(),
+              [](const Around& a, const Around& b) { return a.key < b.key || (a.key == b.key && a.order < b.order); });
     // Faces between two materials in the order they were met (the second use of a key), then the
     // outer faces (one use) in key order: as the maps this replaces gave them.
     for (std::size_t i = 0; i < around.size();) {
       std::size_t j = i + 1;
-      while (j < around.size() && same(around[j].key, around[i].key)) ++j;
+      while (j < around.size() && around[j].key == around[i].key) ++j;
       if (j - i == 1) outer.push_back({std::uint64_t{1} << 63, around[i].tri});
       for (std::size_t k = i + 1; k < j; ++k)
         if (around[i].block != around[k].block) {
@@ -507,21 +508,26 @@ private:
       after = std::min(after, score(t, e));
     }
     if (!(after > before)) return undo();
-    // Conforming around a: no face of three tetrahedra, no element twice.
-    std::map<Face, int> uses;
-    std::set<Tet> elems;
+    // Conforming around a: no face of three tetrahedra, no element twice (sorted keys in flat
+    // arrays: the maps they replace allocated a node per face).
+    auto& elems = conform_scratch_.elems;
+    auto& uses = conform_scratch_.faces;
+    elems.clear();
+    uses.clear();
     auto add_tet = [&](const Tet& e) {
       Tet k = e;
       std::sort(k.begin(), k.end());
-      if (!elems.insert(k).second) return undo();
-      for (const auto& f : kFaceOf)
-        if (++uses[sorted({e[f[0]], e[f[1]], e[f[2]]})] > 2) return undo();
-      return true;
+      elems.push_back(k);
+      for (const auto& f : kFaceOf) uses.push_back(sorted({e[f[0]], e[f[1]], e[f[2]]}));
     };
     for (auto t : tets_of_[a])
-      if (!has(s_.tets[t], b) && !add_tet(s_.tets[t])) return undo();
-    for (const auto& [t, e] : changed)
-      if (!add_tet(e)) return undo();
+      if (!has(s_.tets[t], b)) add_tet(s_.tets[t]);
+    for (const auto& [t, e] : changed) add_tet(e);
+    std::sort(elems.begin(), elems.end());
+    if (std::adjacent_find(elems.begin(), elems.end()) != elems.end()) return undo();
+    std::sort(uses.begin(), uses.end());
+    for (std::size_t i = 0; i + 2 < uses.size(); ++i)
+      if (same(uses[i], uses[i + 2])) return undo();
     std::set<Face> tris;
     for (auto i : tris_of_[a])
       if (!has(s_.tris[i], b)) tris.insert(sorted(s_.tris[i]));
@@ -745,10 +751,16 @@ private:
   }
 
   struct Around {
-    Face key, tri;
+    std::uint64_t key;  // the face's two nodes other than v, lower one first: sorts as the sorted faces
+    Face tri;
     std::uint32_t block;
     std::uint32_t order;  // position among the faces met, for the pairing in surfaces_of
   };
+  struct ConformScratch {
+    std::vector<Tet> elems;
+    std::vector<Face> faces;
+  };
+  ConformScratch conform_scratch_;  // try_collapse's arrays
   struct Scratch {
     SurfaceTopology topology;
     std::vector<std::pair<std::uint64_t, Face>> outer;
@@ -797,9 +809,26 @@ private:
 
 }  // namespace
 
+InputTetShape::InputTetShape(std::vector<Point3> nodes, std::vector<std::span<const std::uint32_t>> tet_arrays)
+    : nodes_(std::move(nodes)), arrays_(std::move(tet_arrays)) {
+  std::size_t n = 0;
+  for (const auto& a : arrays_) {
+    first_.push_back(static_cast<std::uint32_t>(n));
+    n += a.size() / 4;
+  }
+  quality_.assign(n, kUnknown);
+  min_edge_.assign(n, kUnknown);
+}
+
+std::array<std::uint32_t, 4> InputTetShape::tet(std::uint32_t p) const {
+  const std::size_t k = static_cast<std::size_t>(std::upper_bound(first_.begin(), first_.end(), p) - first_.begin()) - 1;
+  const std::uint32_t* e = arrays_[k].data() + std::size_t{4} * (p - first_[k]);
+  return {e[0], e[1], e[2], e[3]};
+}
+
 double InputTetShape::quality(std::uint32_t p) const {
   if (quality_[p] == kUnknown) {
-    const auto& e = tets_[p];
+    const auto e = tet(p);
     quality_[p] = min_dihedral_angle_deg(nodes_[e[0]], nodes_[e[1]], nodes_[e[2]], nodes_[e[3]]);
   }
   return quality_[p];
@@ -807,7 +836,7 @@ double InputTetShape::quality(std::uint32_t p) const {
 
 double InputTetShape::min_edge(std::uint32_t p) const {
   if (min_edge_[p] == kUnknown) {
-    const auto& e = tets_[p];
+    const auto e = tet(p);
     double shortest = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, vec3::norm(vec3::sub(nodes_[e[i]], nodes_[e[j]])));

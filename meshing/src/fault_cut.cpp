@@ -230,20 +230,16 @@ public:
           Fb_.push_back(static_cast<std::uint32_t>(b));
         }
     }
-    parent_.emplace(X_, T_);
+    {  // the input tetrahedra, read from the blocks (unchanged until finish)
+      std::vector<std::span<const std::uint32_t>> input;
+      for (const auto& blk : mesh.blocks)
+        if (blk.type == ElementType::Tetrahedron) input.emplace_back(blk.nodes);
+      parent_.emplace(X_, std::move(input));
+    }
     reach_.assign(X_.size(), 0.0);
-    {  // each node's list allocated once at its size (instead of growing by push_back)
-      std::vector<std::uint32_t> count(X_.size(), 0);
-      for (const auto& t : T_)
-        for (auto v : t) ++count[v];
-      tets_at_.resize(X_.size());
-      for (std::size_t v = 0; v < X_.size(); ++v) tets_at_[v].reserve(count[v]);
-    }
-    for (std::size_t i = 0; i < T_.size(); ++i) {
-      link(tets_at_, T_[i], static_cast<std::uint32_t>(i));
-      raise_reach(T_[i]);
-    }
-    for (std::size_t i = 0; i < F_.size(); ++i) link(tris_at_, F_[i], static_cast<std::uint32_t>(i));
+    tets_at_.build(X_.size(), T_);
+    tris_at_.build(X_.size(), F_);
+    for (const auto& t : T_) raise_reach(t);
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
@@ -715,42 +711,82 @@ private:
   }
 
   // Node -> element incidences (unordered lists), kept up to date by apply, so that the work of a
-  // panel visits the elements around the nodes it concerns instead of the whole mesh.
-  using Incidence = std::vector<std::vector<std::uint32_t>>;
+  // panel visits the elements around the nodes it concerns instead of the whole mesh. The input's
+  // lists in one array (each node's at its start size, filled by a counting pass: half a million
+  // vectors were allocated and grown one element at a time before), with a vector per node for
+  // what no longer fits and for the nodes the cut adds.
+  class Incidence {
+  public:
+    template <std::size_t K>
+    void build(std::size_t nodes, const std::vector<std::array<std::uint32_t, K>>& elements) {
+      count_.assign(nodes, 0);
+      for (const auto& e : elements)
+        for (auto v : e) ++count_[v];
+      start_.assign(nodes + 1, 0);
+      for (std::size_t v = 0; v < nodes; ++v) start_[v + 1] = start_[v] + count_[v];
+      data_.resize(start_[nodes]);
+      std::fill(count_.begin(), count_.end(), 0);
+      for (std::size_t i = 0; i < elements.size(); ++i)
+        for (auto v : elements[i]) data_[start_[v] + count_[v]++] = static_cast<std::uint32_t>(i);
+    }
+    void add(std::uint32_t v, std::uint32_t i) {
+      if (v < count_.size() && start_[v] + count_[v] < start_[v + 1]) {
+        data_[start_[v] + count_[v]++] = i;
+        return;
+      }
+      if (v >= more_.size()) more_.resize(std::size_t{v} + 1);
+      more_[v].push_back(i);
+    }
+    void remove(std::uint32_t v, std::uint32_t i) {
+      if (v < count_.size()) {
+        std::uint32_t* b = data_.data() + start_[v];
+        std::uint32_t* e = b + count_[v];
+        if (std::uint32_t* it = std::find(b, e, i); it != e) {
+          *it = e[-1];
+          --count_[v];
+          return;
+        }
+      }
+      auto& l = more_[v];
+      auto it = std::find(l.begin(), l.end(), i);
+      *it = l.back();
+      l.pop_back();
+    }
+    // Appends v's elements to out.
+    void append(std::uint32_t v, std::vector<std::uint32_t>& out) const {
+      if (v < count_.size()) out.insert(out.end(), data_.begin() + start_[v], data_.begin() + start_[v] + count_[v]);
+      if (v < more_.size()) out.insert(out.end(), more_[v].begin(), more_[v].end());
+    }
+
+  private:
+    std::vector<std::size_t> start_;     // per input node: its first slot in data_
+    std::vector<std::uint32_t> count_;   // per input node: its slots in use
+    std::vector<std::uint32_t> data_;
+    std::vector<std::vector<std::uint32_t>> more_;
+  };
   template <std::size_t K>
   void link(Incidence& at, const std::array<std::uint32_t, K>& e, std::uint32_t i) {
-    for (auto v : e) {
-      if (v >= at.size()) at.resize(std::max<std::size_t>(v + 1, X_.size()));
-      at[v].push_back(i);
-    }
+    for (auto v : e) at.add(v, i);
   }
   // Element i changed from `before` to `after`.
   template <std::size_t K>
   void relink(Incidence& at, const std::array<std::uint32_t, K>& before, const std::array<std::uint32_t, K>& after, std::uint32_t i) {
     for (auto v : before)
-      if (std::find(after.begin(), after.end(), v) == after.end()) {
-        auto& l = at[v];
-        auto it = std::find(l.begin(), l.end(), i);
-        *it = l.back();
-        l.pop_back();
-      }
+      if (std::find(after.begin(), after.end(), v) == after.end()) at.remove(v, i);
     for (auto v : after)
-      if (std::find(before.begin(), before.end(), v) == before.end()) {
-        if (v >= at.size()) at.resize(std::max<std::size_t>(v + 1, X_.size()));
-        at[v].push_back(i);
-      }
+      if (std::find(before.begin(), before.end(), v) == before.end()) at.add(v, i);
   }
   std::vector<std::uint32_t> sorted_at(const Incidence& at, std::uint32_t v) const {
-    if (v >= at.size()) return {};
-    auto l = at[v];
+    std::vector<std::uint32_t> l;
+    at.append(v, l);
     std::sort(l.begin(), l.end());
     return l;
   }
   // The elements holding a node flagged in `want`, in increasing order.
   static std::vector<std::uint32_t> elements_at(const Incidence& at, const std::vector<char>& want) {
     std::vector<std::uint32_t> out;
-    for (std::size_t v = 0; v < want.size() && v < at.size(); ++v)
-      if (want[v]) out.insert(out.end(), at[v].begin(), at[v].end());
+    for (std::size_t v = 0; v < want.size(); ++v)
+      if (want[v]) at.append(static_cast<std::uint32_t>(v), out);
     if (out.size() < (std::size_t{1} << 15)) {
       std::sort(out.begin(), out.end());
       out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -794,8 +830,7 @@ private:
   // The elements holding one of `nodes`, in increasing order.
   static std::vector<std::uint32_t> elements_at(const Incidence& at, const std::vector<std::uint32_t>& nodes) {
     std::vector<std::uint32_t> out;
-    for (auto v : nodes)
-      if (v < at.size()) out.insert(out.end(), at[v].begin(), at[v].end());
+    for (auto v : nodes) at.append(v, out);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
