@@ -135,8 +135,7 @@ public:
     smoothing_surfaces_.reset(s_.nodes.size());
     moved_at_.assign(s_.nodes.size(), 0);
     smooth_failed_.assign(s_.nodes.size(), kNever);
-    tet_q_.assign(s_.tets.size(), 0.0);
-    tet_q_time_.assign(s_.tets.size(), kNever);
+    tet_q_.assign(s_.tets.size(), {0.0, kNever});
     if (smooth_below_ > 0)
       for (int pass = 0; pass < 6; ++pass) {
         const std::size_t n = smoothing_pass();
@@ -639,12 +638,12 @@ private:
   // moves (the smoothing changes no incidence).
   double smoothing_quality(std::uint32_t t) {
     const auto& e = s_.tets[t];
-    const std::uint64_t at = tet_q_time_[t];
+    auto& c = tet_q_[t];
+    const std::uint64_t at = c.time;
     if (at != kNever && moved_at_[e[0]] <= at && moved_at_[e[1]] <= at && moved_at_[e[2]] <= at && moved_at_[e[3]] <= at)
-      return tet_q_[t];
-    tet_q_[t] = quality(e);
-    tet_q_time_[t] = moves_;
-    return tet_q_[t];
+      return c.q;
+    c = {quality(e), moves_};
+    return c.q;
   }
 
   bool smooth(std::uint32_t v) {
@@ -709,8 +708,7 @@ private:
       if (ok) {
         moved_at_[v] = ++moves_;
         for (std::size_t i = 0; i < trial.size(); ++i) {
-          tet_q_[tets_of_[v][i]] = trial[i];
-          tet_q_time_[tets_of_[v][i]] = moves_;
+          tet_q_[tets_of_[v][i]] = {trial[i], moves_};
         }
         return true;
       }
@@ -785,8 +783,11 @@ private:
     std::uint64_t time;  // moves_ then, kNever none
   };
   std::vector<SmoothBandTet> smooth_band_;
-  std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
-  std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
+  struct CachedQuality {
+    double q;            // smoothing_quality's value
+    std::uint64_t time;  // moves_ when computed, kNever none
+  };
+  std::vector<CachedQuality> tet_q_;           // per tetrahedron (one cache line for both)
   std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
   SurfaceCache collapse_surfaces_;         // stamped with changes_
   std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
