@@ -5,7 +5,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <map>
 #include <set>
 #include <iterator>
 #include <tuple>
@@ -60,6 +59,60 @@ struct Surfaces {
   std::vector<Line> lines;
 };
 
+// Which faces through a node are surfaces and which of their edges at the node may be feature lines
+// (surfaces_of's first part: incidences only). at_edge is sorted by (group, w, order).
+struct EdgeFace {
+  std::uint64_t group;
+  std::uint32_t w;      // the edge's other node
+  std::uint32_t order;  // position among the edges met
+  std::uint32_t face;   // index in faces
+  std::uint32_t third;  // the face's third node
+};
+struct SurfaceTopology {
+  bool known = false;
+  std::vector<std::pair<std::uint64_t, Face>> faces;  // (group, face)
+  std::vector<EdgeFace> at_edge;
+};
+
+// A node's surfaces kept between the requests of a pass and across passes: one entry per node
+// asked for (a slot per node; a deque, so that entries stay put while it grows), computed again
+// when the caller's freshness test says that something it depends on changed after `time`.
+class SurfaceCache {
+public:
+  void reset(std::size_t nodes) {
+    slot_.assign(nodes, 0);
+    entries_.clear();
+  }
+  // v's surfaces, nullptr when they cannot be computed (a degenerate face). fresh(time): is the entry
+  // computed at `time` still valid; compute(SurfaceTopology&, Surfaces&) -> bool fills them (the
+  // topology is the entry's own, kept for a caller whose incidences do not change); `now` stamps it.
+  template <class Fresh, class Compute>
+  const Surfaces* get(std::uint32_t v, std::uint64_t now, Fresh&& fresh, Compute&& compute) {
+    if (slot_[v] == 0) {
+      entries_.emplace_back();
+      slot_[v] = static_cast<std::uint32_t>(entries_.size());
+    } else if (const Entry& c = entries_[slot_[v] - 1]; fresh(c.time)) {
+      return c.ok ? &c.s : nullptr;
+    }
+    Entry& c = entries_[slot_[v] - 1];
+    c.s.planes.clear();
+    c.s.lines.clear();
+    c.ok = compute(c.topology, c.s);
+    c.time = now;
+    return c.ok ? &c.s : nullptr;
+  }
+
+private:
+  struct Entry {
+    bool ok = false;
+    SurfaceTopology topology;
+    Surfaces s;
+    std::uint64_t time = 0;
+  };
+  std::vector<std::uint32_t> slot_;  // per node: 1 + its entry, 0 none
+  std::deque<Entry> entries_;
+};
+
 class BandImprover {
 public:
   BandImprover(ElementSoup s, std::size_t first_new, double ratio, double smooth_below, double tol)
@@ -71,7 +124,7 @@ public:
     find_band();
     tri_dead_.assign(s_.tris.size(), 0);
     node_dead_.assign(s_.nodes.size(), 0);
-    surf_slot_.assign(s_.nodes.size(), 0);
+    collapse_surfaces_.reset(s_.nodes.size());
     changed_at_.assign(s_.nodes.size(), 0);
     if (ratio_ > 0)
       for (int pass = 0; pass < 10; ++pass) {
@@ -79,11 +132,10 @@ public:
         r.collapsed += n;
         if (n == 0) break;
       }
-    smooth_slot_.assign(s_.nodes.size(), 0);
+    smoothing_surfaces_.reset(s_.nodes.size());
     moved_at_.assign(s_.nodes.size(), 0);
     smooth_failed_.assign(s_.nodes.size(), kNever);
-    tet_q_.assign(s_.tets.size(), 0.0);
-    tet_q_time_.assign(s_.tets.size(), kNever);
+    tet_q_.assign(s_.tets.size(), {0.0, kNever});
     if (smooth_below_ > 0)
       for (int pass = 0; pass < 6; ++pass) {
         const std::size_t n = smoothing_pass();
@@ -103,9 +155,10 @@ private:
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its
   // neighbours, and the cut is held to the bound where the input was better.
   double score(std::uint32_t t, const Tet& e) const { return score_of(t, quality(e)); }
-  double score_of(std::uint32_t t, double q) const {
+  double score_of(std::uint32_t t, double q) const { return q / score_per(t); }
+  double score_per(std::uint32_t t) const {
     const double ref = std::min(s_.bound_deg, s_.parent.quality(s_.tet_parent[t]));
-    return q / std::max(ref, 1e-9);
+    return std::max(ref, 1e-9);
   }
   bool in_band(const Tet& t) const {
     return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
@@ -129,64 +182,85 @@ private:
 
   // Incidences of the nodes flagged in `want` (alive elements only), in increasing order.
   // Only the lists of the previous call's nodes are emptied (not half a million per pass: freeing
-  // and zeroing them cost more than the lists themselves).
-  void build_adjacency(const std::vector<char>& want) {
+  // and zeroing them cost more than the lists themselves). `kept`: no incidence changed since the
+  // previous call (the smoothing's passes), so the lists made then are still right and only the
+  // nodes without one get theirs (the others' lists are not read: every caller asks about `want`).
+  void build_adjacency(const std::vector<char>& want, bool kept = false) {
     tets_of_.resize(s_.nodes.size());
     tris_of_.resize(s_.nodes.size());
-    for (auto v : listed_) {
-      tets_of_[v].clear();
-      tris_of_[v].clear();
+    listed_at_.resize(s_.nodes.size(), 0);
+    if (!kept) {
+      for (auto v : listed_) {
+        tets_of_[v].clear();
+        tris_of_[v].clear();
+        listed_at_[v] = 0;
+      }
+      listed_.clear();
     }
-    listed_.clear();
+    const std::size_t first = listed_.size();
     for (std::size_t v = 0; v < want.size(); ++v) {
-      if (!want[v]) continue;
+      if (!want[v] || listed_at_[v]) continue;
       listed_.push_back(static_cast<std::uint32_t>(v));
+      listed_at_[v] = 1;
       auto& l = tets_of_[v];
       for (auto t : around_[v])
         if (!tet_dead_[t] && has(s_.tets[t], static_cast<std::uint32_t>(v))) l.push_back(t);
       std::sort(l.begin(), l.end());
       l.erase(std::unique(l.begin(), l.end()), l.end());
     }
+    if (first == listed_.size()) return;
+    std::vector<char> now(want.size(), 0);  // the nodes listed by this call
+    for (std::size_t k = first; k < listed_.size(); ++k) now[listed_[k]] = 1;
     for (std::size_t i = 0; i < s_.tris.size(); ++i)
       if (!tri_dead_[i])
         for (auto v : s_.tris[i])
-          if (want[v]) tris_of_[v].push_back(static_cast<std::uint32_t>(i));
+          if (now[v]) tris_of_[v].push_back(static_cast<std::uint32_t>(i));
   }
 
   // The surfaces through v: its triangles, the faces between two materials and the outer faces
   // around it (a face holding v belongs to tetrahedra holding v, so the counts are exact); its
   // feature lines: edges of a surface group used by other than two faces, or by two faces that are
   // not coplanar. nullopt-like: returns false when a face is degenerate (v stays).
+  // In two parts: which faces and edges (incidences only: the smoothing computes them once per
+  // node) and their planes and creases (node positions).
   bool surfaces_of(std::uint32_t v, Surfaces& out) const {
+    topology_of(v, scratch_.topology);
+    return geometry_of(v, scratch_.topology, out);
+  }
+
+  void topology_of(std::uint32_t v, SurfaceTopology& topo) const {
     // Flat sorted vectors rather than maps: this runs for every node the collapse and the smoothing
     // look at (millions of calls at the thesis scale), and the sets are a few dozen entries.
     // Scratch arrays kept between calls (malloc and free were about 7 % of the samples).
-    auto& faces = scratch_.faces;
+    auto& faces = topo.faces;
+    auto& at_edge = topo.at_edge;
     auto& around = scratch_.around;
     auto& between = scratch_.between;
     auto& outer = scratch_.outer;
-    auto& at_edge = scratch_.at_edge;
     faces.clear();
+    at_edge.clear();
     around.clear();
     between.clear();
     outer.clear();
-    at_edge.clear();
+    topo.known = true;
     for (auto i : tris_of_[v]) faces.push_back({s_.tri_group[i], s_.tris[i]});
     for (auto t : tets_of_[v])
       for (const auto& f : kFaceOf) {
         const Face tri{s_.tets[t][f[0]], s_.tets[t][f[1]], s_.tets[t][f[2]]};
         if (!has(tri, v)) continue;
-        around.push_back({sorted(tri), tri, s_.tet_block[t], static_cast<std::uint32_t>(around.size())});
+        // Sets of three holding v compare as their two other nodes do (the smallest node in one and
+        // not the other decides, and v is in both): one 64-bit key instead of three fields.
+        const std::uint32_t p = tri[0] == v ? tri[1] : tri[0], q = tri[2] == v ? tri[1] : tri[2];
+        const std::uint64_t key = (std::uint64_t{std::min(p, q)} << 32) | std::max(p, q);
+        around.push_back({key, tri, s_.tet_block[t], static_cast<std::uint32_t>(around.size())});
       }
-    // Field by field: std::array's == went through memcmp (6 % of the thesis bench's samples).
-    std::sort(around.begin(), around.end(), [](const Around& a, const Around& b) {
-      return std::tie(a.key[0], a.key[1], a.key[2], a.order) < std::tie(b.key[0], b.key[1], b.key[2], b.order);
-    });
+    std::sort(around.begin(), around.end(),
+              [](const Around& a, const Around& b) { return a.key < b.key || (a.key == b.key && a.order < b.order); });
     // Faces between two materials in the order they were met (the second use of a key), then the
     // outer faces (one use) in key order: as the maps this replaces gave them.
     for (std::size_t i = 0; i < around.size();) {
       std::size_t j = i + 1;
-      while (j < around.size() && same(around[j].key, around[i].key)) ++j;
+      while (j < around.size() && around[j].key == around[i].key) ++j;
       if (j - i == 1) outer.push_back({std::uint64_t{1} << 63, around[i].tri});
       for (std::size_t k = i + 1; k < j; ++k)
         if (around[i].block != around[k].block) {
@@ -198,29 +272,40 @@ private:
     std::sort(between.begin(), between.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& b : between) faces.push_back(b.second);
     faces.insert(faces.end(), outer.begin(), outer.end());
+    // Per (group, edge v-w): the faces and their third nodes.
+    for (std::size_t fi = 0; fi < faces.size(); ++fi) {
+      const auto& [g, f] = faces[fi];
+      for (int k = 0; k < 3; ++k)
+        if (f[k] != v)
+          at_edge.push_back({g, f[k], static_cast<std::uint32_t>(at_edge.size()), static_cast<std::uint32_t>(fi),
+                             f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
+    }
+    std::sort(at_edge.begin(), at_edge.end(), [](const EdgeFace& a, const EdgeFace& b) {
+      return std::tie(a.group, a.w, a.order) < std::tie(b.group, b.w, b.order);
+    });
+  }
+
+  bool geometry_of(std::uint32_t v, const SurfaceTopology& topo, Surfaces& out) const {
     auto exact = [&](std::uint64_t g) { return !(g >= s_.first_fault_group && g < (std::uint64_t{1} << 62)); };
-    // Per (group, edge v-w): the faces' normals and third nodes.
-    for (const auto& [g, f] : faces) {
+    auto& normal = scratch_.normal;  // of each face
+    normal.clear();
+    for (const auto& [g, f] : topo.faces) {
       const Point3 n = cross(sub(X(f[1]), X(f[0])), sub(X(f[2]), X(f[0])));
       const double nn = norm(n);
       if (!(nn > 0)) return false;
       const Point3 u = scaled(n, 1 / nn);
       out.planes.push_back({X(f[0]), u, exact(g)});
-      for (int k = 0; k < 3; ++k)
-        if (f[k] != v)
-          at_edge.push_back({g, f[k], static_cast<std::uint32_t>(at_edge.size()), u, f[3 - k - (f[0] == v ? 0 : f[1] == v ? 1 : 2)]});
+      normal.push_back(u);
     }
-    std::sort(at_edge.begin(), at_edge.end(), [](const EdgeFace& a, const EdgeFace& b) {
-      return std::tie(a.group, a.w, a.order) < std::tie(b.group, b.w, b.order);
-    });
     // A crease: the two faces' third nodes off each other's plane (by more than the tolerance on a
     // fault, by more than rounding elsewhere).
+    const auto& at_edge = topo.at_edge;
     for (std::size_t i = 0; i < at_edge.size();) {
       std::size_t j = i + 1;
       while (j < at_edge.size() && at_edge[j].group == at_edge[i].group && at_edge[j].w == at_edge[i].w) ++j;
       const double t = exact(at_edge[i].group) ? round_ : tol_;
-      if (j - i != 2 || std::abs(dot(at_edge[i].n, sub(X(at_edge[i + 1].third), X(v)))) > t ||
-          std::abs(dot(at_edge[i + 1].n, sub(X(at_edge[i].third), X(v)))) > t) {
+      if (j - i != 2 || std::abs(dot(normal[at_edge[i].face], sub(X(at_edge[i + 1].third), X(v)))) > t ||
+          std::abs(dot(normal[at_edge[i + 1].face], sub(X(at_edge[i].third), X(v)))) > t) {
         const Point3 d = sub(X(at_edge[i].w), X(v));
         out.lines.push_back({scaled(d, 1 / norm(d)), exact(at_edge[i].group)});
       }
@@ -242,7 +327,7 @@ private:
           if (node_faults_[v].empty()) on_fault_.push_back(v);
           if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
         }
-    for (auto& g : node_faults_) std::sort(g.begin(), g.end());
+    for (auto v : on_fault_) std::sort(node_faults_[v].begin(), node_faults_[v].end());  // the others are empty
     for (auto t : band_) {
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const auto& e = s_.tets[t];
@@ -313,19 +398,9 @@ private:
   // after a collapse changed the node's tetrahedra or moved one of their nodes: they depend on
   // nothing else (tets_of_ lists are sorted, so a rebuilt list of the same tetrahedra is the same).
   const Surfaces* cached_surfaces_of(std::uint32_t v) {
-    if (surf_slot_[v] == 0) {
-      surf_cache_.emplace_back();
-      surf_slot_[v] = static_cast<std::uint32_t>(surf_cache_.size());
-    } else if (changed_at_[v] <= surf_cache_[surf_slot_[v] - 1].time) {
-      const auto& c = surf_cache_[surf_slot_[v] - 1];
-      return c.ok ? &c.s : nullptr;
-    }
-    auto& c = surf_cache_[surf_slot_[v] - 1];
-    c.s.planes.clear();
-    c.s.lines.clear();
-    c.ok = surfaces_of(v, c.s);
-    c.time = changes_;
-    return c.ok ? &c.s : nullptr;
+    return collapse_surfaces_.get(
+        v, changes_, [&](std::uint64_t time) { return changed_at_[v] <= time; },
+        [&](SurfaceTopology&, Surfaces& out) { return surfaces_of(v, out); });
   }
 
   bool lies_on(const Surfaces& s, std::uint32_t from, std::uint32_t a) const {
@@ -432,21 +507,26 @@ private:
       after = std::min(after, score(t, e));
     }
     if (!(after > before)) return undo();
-    // Conforming around a: no face of three tetrahedra, no element twice.
-    std::map<Face, int> uses;
-    std::set<Tet> elems;
+    // Conforming around a: no face of three tetrahedra, no element twice (sorted keys in flat
+    // arrays: the maps they replace allocated a node per face).
+    auto& elems = conform_scratch_.elems;
+    auto& uses = conform_scratch_.faces;
+    elems.clear();
+    uses.clear();
     auto add_tet = [&](const Tet& e) {
       Tet k = e;
       std::sort(k.begin(), k.end());
-      if (!elems.insert(k).second) return undo();
-      for (const auto& f : kFaceOf)
-        if (++uses[sorted({e[f[0]], e[f[1]], e[f[2]]})] > 2) return undo();
-      return true;
+      elems.push_back(k);
+      for (const auto& f : kFaceOf) uses.push_back(sorted({e[f[0]], e[f[1]], e[f[2]]}));
     };
     for (auto t : tets_of_[a])
-      if (!has(s_.tets[t], b) && !add_tet(s_.tets[t])) return undo();
-    for (const auto& [t, e] : changed)
-      if (!add_tet(e)) return undo();
+      if (!has(s_.tets[t], b)) add_tet(s_.tets[t]);
+    for (const auto& [t, e] : changed) add_tet(e);
+    std::sort(elems.begin(), elems.end());
+    if (std::adjacent_find(elems.begin(), elems.end()) != elems.end()) return undo();
+    std::sort(uses.begin(), uses.end());
+    for (std::size_t i = 0; i + 2 < uses.size(); ++i)
+      if (same(uses[i], uses[i + 2])) return undo();
     std::set<Face> tris;
     for (auto i : tris_of_[a])
       if (!has(s_.tris[i], b)) tris.insert(sorted(s_.tris[i]));
@@ -497,12 +577,19 @@ private:
     std::vector<char> want(s_.nodes.size(), 0);
     std::vector<std::pair<double, std::uint32_t>> order;  // (worst score, node)
     std::vector<double> worst(s_.nodes.size(), 180);
-    for (auto t : band_) {
-      if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
-      const double qa = smoothing_quality(static_cast<std::uint32_t>(t));
-      const double q = score_of(static_cast<std::uint32_t>(t), qa);
+    if (smooth_band_.empty())
+      for (auto t : band_)
+        if (!tet_dead_[t] && in_band(s_.tets[t])) smooth_band_.push_back({s_.tets[t], t, score_per(t), 0.0, kNever});
+    for (auto& b : smooth_band_) {
+      const auto& e = b.e;
+      if (b.time == kNever || moved_at_[e[0]] > b.time || moved_at_[e[1]] > b.time || moved_at_[e[2]] > b.time || moved_at_[e[3]] > b.time) {
+        b.q = smoothing_quality(b.t);
+        b.time = moves_;
+      }
+      const double qa = b.q;
+      const double q = qa / b.per;  // score_of(b.t, qa)
       if (!(q < 1) && !(qa < smooth_below_)) continue;
-      for (auto v : s_.tets[t])
+      for (auto v : e)
         if (!node_dead_[v]) {
           want[v] = 1;
           worst[v] = std::min(worst[v], q);
@@ -512,7 +599,8 @@ private:
       if (want[v]) order.push_back({worst[v], static_cast<std::uint32_t>(v)});
     if (order.empty()) return 0;
     std::sort(order.begin(), order.end());
-    build_adjacency(want);
+    build_adjacency(want, smoothing_lists_);
+    smoothing_lists_ = true;
     std::size_t moved = 0;
     for (const auto& [q, v] : order) {
       if (smooth_failed_[v] != kNever && !moved_around(v, smooth_failed_[v])) continue;
@@ -536,42 +624,26 @@ private:
   }
 
   // surfaces_of for the smoothing, kept across its passes: they change no incidence, so v's
-  // surfaces stay as computed until v or a node of its tetrahedra or triangles moves.
+  // surfaces stay as computed until v or a node of its tetrahedra or triangles moves, and then only
+  // their planes and creases are computed again (the faces and edges, sorted once per node).
   const Surfaces* smoothing_surfaces_of(std::uint32_t v) {
-    auto fresh = [&](const SurfEntry& c) {
-      for (auto t : tets_of_[v])
-        for (auto w : s_.tets[t])
-          if (moved_at_[w] > c.time) return false;
-      for (auto i : tris_of_[v])
-        for (auto w : s_.tris[i])
-          if (moved_at_[w] > c.time) return false;
-      return true;
-    };
-    if (smooth_slot_[v] == 0) {
-      smooth_cache_.emplace_back();
-      smooth_slot_[v] = static_cast<std::uint32_t>(smooth_cache_.size());
-    } else if (fresh(smooth_cache_[smooth_slot_[v] - 1])) {
-      const auto& c = smooth_cache_[smooth_slot_[v] - 1];
-      return c.ok ? &c.s : nullptr;
-    }
-    auto& c = smooth_cache_[smooth_slot_[v] - 1];
-    c.s.planes.clear();
-    c.s.lines.clear();
-    c.ok = surfaces_of(v, c.s);
-    c.time = moves_;
-    return c.ok ? &c.s : nullptr;
+    return smoothing_surfaces_.get(
+        v, moves_, [&](std::uint64_t time) { return !moved_around(v, time); }, [&](SurfaceTopology& topo, Surfaces& out) {
+          if (!topo.known) topology_of(v, topo);
+          return geometry_of(v, topo, out);
+        });
   }
 
   // A tetrahedron's smallest dihedral angle during the smoothing, kept until one of its nodes
   // moves (the smoothing changes no incidence).
   double smoothing_quality(std::uint32_t t) {
     const auto& e = s_.tets[t];
-    const std::uint64_t at = tet_q_time_[t];
+    auto& c = tet_q_[t];
+    const std::uint64_t at = c.time;
     if (at != kNever && moved_at_[e[0]] <= at && moved_at_[e[1]] <= at && moved_at_[e[2]] <= at && moved_at_[e[3]] <= at)
-      return tet_q_[t];
-    tet_q_[t] = quality(e);
-    tet_q_time_[t] = moves_;
-    return tet_q_[t];
+      return c.q;
+    c = {quality(e), moves_};
+    return c.q;
   }
 
   bool smooth(std::uint32_t v) {
@@ -636,8 +708,7 @@ private:
       if (ok) {
         moved_at_[v] = ++moves_;
         for (std::size_t i = 0; i < trial.size(); ++i) {
-          tet_q_[tets_of_[v][i]] = trial[i];
-          tet_q_time_[tets_of_[v][i]] = moves_;
+          tet_q_[tets_of_[v][i]] = {trial[i], moves_};
         }
         return true;
       }
@@ -678,41 +749,47 @@ private:
   }
 
   struct Around {
-    Face key, tri;
+    std::uint64_t key;  // the face's two nodes other than v, lower one first: sorts as the sorted faces
+    Face tri;
     std::uint32_t block;
     std::uint32_t order;  // position among the faces met, for the pairing in surfaces_of
   };
-  struct EdgeFace {
-    std::uint64_t group;
-    std::uint32_t w;
-    std::uint32_t order;
-    Point3 n;
-    std::uint32_t third;
+  struct ConformScratch {
+    std::vector<Tet> elems;
+    std::vector<Face> faces;
   };
+  ConformScratch conform_scratch_;  // try_collapse's arrays
   struct Scratch {
-    std::vector<std::pair<std::uint64_t, Face>> faces, outer;
+    SurfaceTopology topology;
+    std::vector<std::pair<std::uint64_t, Face>> outer;
     std::vector<Around> around;
     std::vector<std::pair<std::uint32_t, std::pair<std::uint64_t, Face>>> between;
-    std::vector<EdgeFace> at_edge;
+    std::vector<Point3> normal;
   };
   mutable Scratch scratch_;  // surfaces_of's arrays
-  struct SurfEntry {
-    bool ok = false;
-    Surfaces s;
-    std::uint64_t time = 0;  // changes_ (collapse) or moves_ (smoothing) when computed
-  };
-  std::vector<std::uint32_t> smooth_slot_;     // per node: 1 + its entry in smooth_cache_, 0 none
-  std::deque<SurfEntry> smooth_cache_;
+  SurfaceCache smoothing_surfaces_;             // stamped with moves_
   std::vector<std::uint64_t> moved_at_;        // per node: moves_ after its last smoothing move, 0 never
   std::uint64_t moves_ = 0;
   std::vector<std::uint64_t> smooth_failed_;   // per node: moves_ when its last smoothing step failed, kNever none
   std::vector<std::uint32_t> nb_scratch_;
   static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
-  std::vector<double> tet_q_;                  // per tetrahedron: smoothing_quality's value
-  std::vector<std::uint64_t> tet_q_time_;      // moves_ when computed, kNever none
+  // The band's tetrahedra during the smoothing (which changes no incidence), in band_'s order, with
+  // what the pass' scan needs in one place (it read five arrays of millions at random per tetrahedron).
+  struct SmoothBandTet {
+    Tet e;
+    std::uint32_t t;
+    double per;          // score_of(t, q) = q / per
+    double q;            // smoothing_quality(t) when computed
+    std::uint64_t time;  // moves_ then, kNever none
+  };
+  std::vector<SmoothBandTet> smooth_band_;
+  struct CachedQuality {
+    double q;            // smoothing_quality's value
+    std::uint64_t time;  // moves_ when computed, kNever none
+  };
+  std::vector<CachedQuality> tet_q_;           // per tetrahedron (one cache line for both)
   std::vector<double> trial_scratch_;          // qualities of a node's tetrahedra at a trial position
-  std::vector<std::uint32_t> surf_slot_;   // per node: 1 + its entry in surf_cache_, 0 none
-  std::deque<SurfEntry> surf_cache_;       // deque: entries stay put while it grows
+  SurfaceCache collapse_surfaces_;         // stamped with changes_
   std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
   std::uint64_t changes_ = 0;              // successful collapses so far
   std::unordered_map<std::uint64_t, std::uint64_t> failed_at_;  // (b << 32 | a) -> changes_ when its collapse failed
@@ -723,6 +800,8 @@ private:
   std::vector<char> tet_dead_, tri_dead_, node_dead_;
   std::vector<std::vector<std::uint32_t>> tets_of_, tris_of_;  // of the nodes of the last build_adjacency, else empty
   std::vector<std::uint32_t> listed_;                         // those nodes
+  std::vector<char> listed_at_;                               // per node: in listed_
+  bool smoothing_lists_ = false;                              // the smoothing has built its first lists
   std::vector<std::uint32_t> band_;                   // the band's tetrahedra at the start, increasing
   std::vector<std::vector<std::uint32_t>> around_;   // per band node: tetrahedra that held it (may be stale)
   std::vector<std::vector<std::uint32_t>> node_faults_;  // fault groups per node (collapse pass)
@@ -731,9 +810,26 @@ private:
 
 }  // namespace
 
+InputTetShape::InputTetShape(std::vector<Point3> nodes, std::vector<std::span<const std::uint32_t>> tet_arrays)
+    : nodes_(std::move(nodes)), arrays_(std::move(tet_arrays)) {
+  std::size_t n = 0;
+  for (const auto& a : arrays_) {
+    first_.push_back(static_cast<std::uint32_t>(n));
+    n += a.size() / 4;
+  }
+  quality_.assign(n, kUnknown);
+  min_edge_.assign(n, kUnknown);
+}
+
+std::array<std::uint32_t, 4> InputTetShape::tet(std::uint32_t p) const {
+  const std::size_t k = static_cast<std::size_t>(std::upper_bound(first_.begin(), first_.end(), p) - first_.begin()) - 1;
+  const std::uint32_t* e = arrays_[k].data() + std::size_t{4} * (p - first_[k]);
+  return {e[0], e[1], e[2], e[3]};
+}
+
 double InputTetShape::quality(std::uint32_t p) const {
   if (quality_[p] == kUnknown) {
-    const auto& e = tets_[p];
+    const auto e = tet(p);
     quality_[p] = min_dihedral_angle_deg(nodes_[e[0]], nodes_[e[1]], nodes_[e[2]], nodes_[e[3]]);
   }
   return quality_[p];
@@ -741,7 +837,7 @@ double InputTetShape::quality(std::uint32_t p) const {
 
 double InputTetShape::min_edge(std::uint32_t p) const {
   if (min_edge_[p] == kUnknown) {
-    const auto& e = tets_[p];
+    const auto e = tet(p);
     double shortest = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, vec3::norm(vec3::sub(nodes_[e[i]], nodes_[e[j]])));

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "ugs/formats/mesh.hpp"
@@ -14,18 +15,21 @@ namespace ugs {
 
 // Smallest dihedral angle and shortest edge of each input tetrahedron (on its input nodes),
 // computed the first time they are asked for: the cut and its band ask for a few thousand of the
-// millions (computing them all cost about a second at the thesis scale).
+// millions (computing them all cost about a second at the thesis scale). The tetrahedra are read
+// from the input's element arrays (4 node indices each, numbered across the arrays in order), which
+// must stay unchanged while this is used: a copy of the 3.1 million was 50 MB to allocate and fill.
 class InputTetShape {
 public:
-  InputTetShape(std::vector<Point3> nodes, std::vector<std::array<std::uint32_t, 4>> tets)
-      : nodes_(std::move(nodes)), tets_(std::move(tets)), quality_(tets_.size(), kUnknown), min_edge_(tets_.size(), kUnknown) {}
+  InputTetShape(std::vector<Point3> nodes, std::vector<std::span<const std::uint32_t>> tet_arrays);
   double quality(std::uint32_t p) const;
   double min_edge(std::uint32_t p) const;
 
 private:
+  std::array<std::uint32_t, 4> tet(std::uint32_t p) const;
   static constexpr double kUnknown = -std::numeric_limits<double>::infinity();
   std::vector<Point3> nodes_;
-  std::vector<std::array<std::uint32_t, 4>> tets_;
+  std::vector<std::span<const std::uint32_t>> arrays_;
+  std::vector<std::uint32_t> first_;  // per array: the number of its first tetrahedron
   mutable std::vector<double> quality_, min_edge_;
 };
 

@@ -207,6 +207,13 @@ void split_element(const std::array<std::uint32_t, K>& e, const EdgeMap& marked,
 class Cutter {
 public:
   Cutter(Mesh& mesh, double tol) : mesh_(mesh), X_(mesh.nodes), tol_(tol) {
+    std::size_t ntets = 0;
+    for (const auto& blk : mesh.blocks)
+      if (blk.type == ElementType::Tetrahedron) ntets += blk.size();
+    ntets += ntets / 8;  // room for the cut's new tetrahedra (2.4 % at the thesis scale)
+    T_.reserve(ntets);
+    Tb_.reserve(ntets);
+    Tp_.reserve(ntets);
     for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
       const auto& blk = mesh.blocks[b];
       if (blk.type == ElementType::Tetrahedron)
@@ -223,20 +230,16 @@ public:
           Fb_.push_back(static_cast<std::uint32_t>(b));
         }
     }
-    parent_.emplace(X_, T_);
+    {  // the input tetrahedra, read from the blocks (unchanged until finish)
+      std::vector<std::span<const std::uint32_t>> input;
+      for (const auto& blk : mesh.blocks)
+        if (blk.type == ElementType::Tetrahedron) input.emplace_back(blk.nodes);
+      parent_.emplace(X_, std::move(input));
+    }
     reach_.assign(X_.size(), 0.0);
-    {  // each node's list allocated once at its size (instead of growing by push_back)
-      std::vector<std::uint32_t> count(X_.size(), 0);
-      for (const auto& t : T_)
-        for (auto v : t) ++count[v];
-      tets_at_.resize(X_.size());
-      for (std::size_t v = 0; v < X_.size(); ++v) tets_at_[v].reserve(count[v]);
-    }
-    for (std::size_t i = 0; i < T_.size(); ++i) {
-      link(tets_at_, T_[i], static_cast<std::uint32_t>(i));
-      raise_reach(T_[i]);
-    }
-    for (std::size_t i = 0; i < F_.size(); ++i) link(tris_at_, F_[i], static_cast<std::uint32_t>(i));
+    tets_at_.build(X_.size(), T_);
+    tris_at_.build(X_.size(), F_);
+    for (const auto& t : T_) raise_reach(t);
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
@@ -356,6 +359,7 @@ public:
         const double a1 = worst(tets_of[c], vol1);
         if (vol1 > 0 && a1 >= 0.5 * a0) {
           ++snapped_;
+          snapped_nodes_.push_back(v);
           moved = true;
           for (auto t : tets_of[c]) raise_reach(T_[t]);
         } else {
@@ -421,7 +425,7 @@ public:
     std::vector<double> g(X_.size());
     for (std::size_t i = 0; i < X_.size(); ++i) g[i] = dot(p.n, X_[i]) - p.c;
     EdgeMap marked;
-    for (const auto& [a, b] : plane_edges(p)) mark(marked, a, b, g);
+    for (const auto& [a, b] : plane_edges(p)) mark(marked, a, b, g[a], g[b]);
     apply(marked);
   }
 
@@ -433,27 +437,24 @@ public:
       if (k != bi) keep.push_back({p.bounds[k].m, p.bounds[k].d});
     snap_onto(p.bounds[bi].m, p.bounds[bi].d, ratio, bound_edges(p, bi), keep);
     EdgeMap marked;
-    std::vector<double> h(X_.size());
-    for (std::size_t i = 0; i < X_.size(); ++i) h[i] = dot(p.bounds[bi].m, X_[i]) - p.bounds[bi].d;
-    for (const auto& [a, b] : bound_edges(p, bi)) mark(marked, a, b, h);
+    const CutHalfSpace& B = p.bounds[bi];
+    for (const auto& [a, b] : bound_edges(p, bi)) mark(marked, a, b, dot(B.m, X_[a]) - B.d, dot(B.m, X_[b]) - B.d);
     apply(marked);
   }
 
   // The edges lying in P that cross bound bi's plane along Q's edge.
-  std::vector<std::array<std::uint32_t, 2>> bound_edges(const CutPanel& p, std::size_t bi) const {
+  std::vector<std::array<std::uint32_t, 2>> bound_edges(const CutPanel& p, std::size_t bi) {
     const CutHalfSpace& B = p.bounds[bi];
-    const std::size_t n = X_.size();
-    std::vector<char> on(n), near(n);
-    std::vector<double> h(n);
+    auto on = [&](std::uint32_t i) { return std::abs(dot(p.n, X_[i]) - p.c) <= tol_; };
+    auto h = [&](std::uint32_t i) { return dot(B.m, X_[i]) - B.d; };
     // A crossing edge's ends are within |m| times their reach of the bound's plane: only the
     // tetrahedra around such nodes of P can hold one (the others were visited for nothing, one
-    // fault plane's worth per bound).
+    // fault plane's worth per bound). The nodes of P come from on_plane (no scan of every node per bound).
     const double mm = norm(B.m);
-    for (std::size_t i = 0; i < n; ++i) {
-      on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
-      h[i] = dot(B.m, X_[i]) - B.d;
+    std::vector<std::uint32_t> near;
+    for (auto i : on_plane(p)) {
       const double reach = i < reach_.size() ? reach_[i] : std::numeric_limits<double>::infinity();
-      near[i] = on[i] && std::abs(h[i]) <= mm * (1.001 * reach + 2 * tol_);
+      if (std::abs(h(i)) <= mm * (1.001 * reach + 2 * tol_)) near.push_back(i);
     }
     struct Cand {
       std::uint32_t a, b;
@@ -464,14 +465,16 @@ public:
     std::unordered_set<std::uint64_t> seen;
     for (auto i : elements_at(tets_at_, near)) {
       const auto& t = T_[i];
-      int count = on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]];
-      if (count < 2) continue;
+      const bool o[4] = {on(t[0]), on(t[1]), on(t[2]), on(t[3])};
+      if (o[0] + o[1] + o[2] + o[3] < 2) continue;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) {
           const auto a = t[i], b = t[j];
-          if (!on[a] || !on[b] || !crosses(h[a], h[b])) continue;
+          if (!o[i] || !o[j]) continue;
+          const double ha = h(a), hb = h(b);
+          if (!crosses(ha, hb)) continue;
           if (!seen.insert(edge_key(a, b)).second) continue;
-          cands.push_back({std::min(a, b), std::max(a, b), crossing(a, b, h[a], h[b]), norm(sub(X_[a], X_[b]))});
+          cands.push_back({std::min(a, b), std::max(a, b), crossing(a, b, ha, hb), norm(sub(X_[a], X_[b]))});
         }
     }
     // Edges whose crossing lies along Q's edge, widened by twice the longest such edge: every face
@@ -683,13 +686,13 @@ private:
     return {A[0] + s * (B[0] - A[0]), A[1] + s * (B[1] - A[1]), A[2] + s * (B[2] - A[2])};
   }
 
-  void mark(EdgeMap& marked, std::uint32_t a, std::uint32_t b, std::vector<double>& g) {
+  // Marks edge (a, b) for bisection at its crossing of the plane whose signed distances at a and b are ga, gb.
+  void mark(EdgeMap& marked, std::uint32_t a, std::uint32_t b, double ga, double gb) {
     const auto k = edge_key(a, b);
     if (marked.count(k)) return;
-    const Point3 x = crossing(a, b, g[a], g[b]);
+    const Point3 x = crossing(a, b, ga, gb);
     marked.emplace(k, static_cast<std::uint32_t>(X_.size()));
     X_.push_back(x);
-    g.push_back(0.0);
   }
 
   // Is the convex point set outside one of the bounds?
@@ -708,42 +711,82 @@ private:
   }
 
   // Node -> element incidences (unordered lists), kept up to date by apply, so that the work of a
-  // panel visits the elements around the nodes it concerns instead of the whole mesh.
-  using Incidence = std::vector<std::vector<std::uint32_t>>;
+  // panel visits the elements around the nodes it concerns instead of the whole mesh. The input's
+  // lists in one array (each node's at its start size, filled by a counting pass: half a million
+  // vectors were allocated and grown one element at a time before), with a vector per node for
+  // what no longer fits and for the nodes the cut adds.
+  class Incidence {
+  public:
+    template <std::size_t K>
+    void build(std::size_t nodes, const std::vector<std::array<std::uint32_t, K>>& elements) {
+      count_.assign(nodes, 0);
+      for (const auto& e : elements)
+        for (auto v : e) ++count_[v];
+      start_.assign(nodes + 1, 0);
+      for (std::size_t v = 0; v < nodes; ++v) start_[v + 1] = start_[v] + count_[v];
+      data_.resize(start_[nodes]);
+      std::fill(count_.begin(), count_.end(), 0);
+      for (std::size_t i = 0; i < elements.size(); ++i)
+        for (auto v : elements[i]) data_[start_[v] + count_[v]++] = static_cast<std::uint32_t>(i);
+    }
+    void add(std::uint32_t v, std::uint32_t i) {
+      if (v < count_.size() && start_[v] + count_[v] < start_[v + 1]) {
+        data_[start_[v] + count_[v]++] = i;
+        return;
+      }
+      if (v >= more_.size()) more_.resize(std::size_t{v} + 1);
+      more_[v].push_back(i);
+    }
+    void remove(std::uint32_t v, std::uint32_t i) {
+      if (v < count_.size()) {
+        std::uint32_t* b = data_.data() + start_[v];
+        std::uint32_t* e = b + count_[v];
+        if (std::uint32_t* it = std::find(b, e, i); it != e) {
+          *it = e[-1];
+          --count_[v];
+          return;
+        }
+      }
+      auto& l = more_[v];
+      auto it = std::find(l.begin(), l.end(), i);
+      *it = l.back();
+      l.pop_back();
+    }
+    // Appends v's elements to out.
+    void append(std::uint32_t v, std::vector<std::uint32_t>& out) const {
+      if (v < count_.size()) out.insert(out.end(), data_.begin() + start_[v], data_.begin() + start_[v] + count_[v]);
+      if (v < more_.size()) out.insert(out.end(), more_[v].begin(), more_[v].end());
+    }
+
+  private:
+    std::vector<std::size_t> start_;     // per input node: its first slot in data_
+    std::vector<std::uint32_t> count_;   // per input node: its slots in use
+    std::vector<std::uint32_t> data_;
+    std::vector<std::vector<std::uint32_t>> more_;
+  };
   template <std::size_t K>
   void link(Incidence& at, const std::array<std::uint32_t, K>& e, std::uint32_t i) {
-    for (auto v : e) {
-      if (v >= at.size()) at.resize(std::max<std::size_t>(v + 1, X_.size()));
-      at[v].push_back(i);
-    }
+    for (auto v : e) at.add(v, i);
   }
   // Element i changed from `before` to `after`.
   template <std::size_t K>
   void relink(Incidence& at, const std::array<std::uint32_t, K>& before, const std::array<std::uint32_t, K>& after, std::uint32_t i) {
     for (auto v : before)
-      if (std::find(after.begin(), after.end(), v) == after.end()) {
-        auto& l = at[v];
-        auto it = std::find(l.begin(), l.end(), i);
-        *it = l.back();
-        l.pop_back();
-      }
+      if (std::find(after.begin(), after.end(), v) == after.end()) at.remove(v, i);
     for (auto v : after)
-      if (std::find(before.begin(), before.end(), v) == before.end()) {
-        if (v >= at.size()) at.resize(std::max<std::size_t>(v + 1, X_.size()));
-        at[v].push_back(i);
-      }
+      if (std::find(before.begin(), before.end(), v) == before.end()) at.add(v, i);
   }
   std::vector<std::uint32_t> sorted_at(const Incidence& at, std::uint32_t v) const {
-    if (v >= at.size()) return {};
-    auto l = at[v];
+    std::vector<std::uint32_t> l;
+    at.append(v, l);
     std::sort(l.begin(), l.end());
     return l;
   }
   // The elements holding a node flagged in `want`, in increasing order.
   static std::vector<std::uint32_t> elements_at(const Incidence& at, const std::vector<char>& want) {
     std::vector<std::uint32_t> out;
-    for (std::size_t v = 0; v < want.size() && v < at.size(); ++v)
-      if (want[v]) out.insert(out.end(), at[v].begin(), at[v].end());
+    for (std::size_t v = 0; v < want.size(); ++v)
+      if (want[v]) at.append(static_cast<std::uint32_t>(v), out);
     if (out.size() < (std::size_t{1} << 15)) {
       std::sort(out.begin(), out.end());
       out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -755,6 +798,41 @@ private:
     out.clear();
     for (std::size_t i = 0; i < hit.size(); ++i)
       if (hit[i]) out.push_back(static_cast<std::uint32_t>(i));
+    return out;
+  }
+
+  // The nodes on panel p's plane (within tol_), in no particular order. One scan of every node per
+  // panel; later calls for the same panel test only the nodes added or snapped since, and those
+  // found before (a node leaves or joins the plane only by moving: snapped_nodes_).
+  const std::vector<std::uint32_t>& on_plane(const CutPanel& p) {
+    auto on = [&](std::uint32_t i) { return std::abs(dot(p.n, X_[i]) - p.c) <= tol_; };
+    auto& o = on_plane_;
+    if (o.panel != &p) {
+      o.panel = &p;
+      o.nodes.clear();
+      for (std::size_t i = 0; i < X_.size(); ++i)
+        if (on(static_cast<std::uint32_t>(i))) o.nodes.push_back(static_cast<std::uint32_t>(i));
+    } else {
+      std::vector<std::uint32_t> test = std::move(o.nodes);
+      test.insert(test.end(), snapped_nodes_.begin() + static_cast<std::ptrdiff_t>(o.snapped), snapped_nodes_.end());
+      for (std::size_t i = o.scanned; i < X_.size(); ++i) test.push_back(static_cast<std::uint32_t>(i));
+      std::sort(test.begin(), test.end());
+      test.erase(std::unique(test.begin(), test.end()), test.end());
+      o.nodes.clear();
+      for (auto i : test)
+        if (on(i)) o.nodes.push_back(i);
+    }
+    o.scanned = X_.size();
+    o.snapped = snapped_nodes_.size();
+    return o.nodes;
+  }
+
+  // The elements holding one of `nodes`, in increasing order.
+  static std::vector<std::uint32_t> elements_at(const Incidence& at, const std::vector<std::uint32_t>& nodes) {
+    std::vector<std::uint32_t> out;
+    for (auto v : nodes) at.append(v, out);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
   }
 
@@ -838,6 +916,12 @@ private:
   std::vector<double> reach_;          // per node: at least the diameter of each tetrahedron holding it
   std::vector<const CutPanel*> done_;  // the panels cut so far
   std::size_t snapped_ = 0;
+  std::vector<std::uint32_t> snapped_nodes_;  // every node snap_onto moved, in order
+  struct OnPlane {
+    const CutPanel* panel = nullptr;
+    std::vector<std::uint32_t> nodes;  // on its plane when last asked
+    std::size_t scanned = 0, snapped = 0;  // X_ and snapped_nodes_ sizes then
+  } on_plane_;
 };
 
 }  // namespace
