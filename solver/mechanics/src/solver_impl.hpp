@@ -101,6 +101,11 @@ struct Assembler {
   // The elastic elements' part of the matrix (with the prescribed rows' diagonal): A's values are
   // kept in A only, the hypo-plastic elements' stiffness (or its change) added into it.
   std::vector<double> vals_lin, diag_scale;
+  // After A is created: the elastic part of the only rows a reassembly resets, those of the owned
+  // nodes of hypo-plastic elements (compact_reset_rows; the full arrays above are then freed
+  // unless CHOLMOD's symmetric P needs them). Empty reset_row: the full arrays are used.
+  std::vector<PetscInt> reset_row, reset_ptr, reset_cols;
+  std::vector<double> reset_vals;
   std::vector<fem::Mat6> assembled_Dt;
   std::vector<std::int8_t> assembled_phase;  // branch in the matrix
   bool have_lin = false, mat_created = false, mat_changed = false;
@@ -389,6 +394,7 @@ struct MechanicsSolver::Impl {
   void upload_linear();
   // Frees the pattern and the elastic values once nothing will change A again (no hypo-plastic element).
   void release_pattern();
+  void compact_reset_rows();
   // Adds an element's stiffness (or its change) into A as scatter() would into a CSR array:
   // owned rows, no prescribed row or column; the same sums in the same order, so the same bits.
   void add_to_matrix(int c, const std::array<double, 144>& Ke);
