@@ -86,19 +86,26 @@ void factor_solve(FactorReuse& r, const std::vector<double>& sig, int its, doubl
 }
 }  // namespace
 
-TEST(SaddleFactorReuse, KeptWhileTheActiveSetAndTheRateHold) {
+TEST(SaddleFactorReuse, KeptWhileTheActiveSetTheRateAndTheExtraIterationsHold) {
   FactorReuse r;
   const std::vector<double> stick{1.0, 1.0, 1.0}, slip{1.0, 0.0, 0.0};
   factor_solve(r, stick, 1, 1e-13);  // fresh factors: 1 iteration, 13 decades (0.077 per decade)
-  for (int i = 0; i < 20; ++i) factor_solve(r, stick, 5, 1e-9);  // 0.56 per decade: (0.56 - 0.08) 9 x 3 = 13 <= 55
+  for (int i = 0; i < 20; ++i) factor_solve(r, stick, 1, 1e-12);  // as good as fresh: nothing extra
+  // 0.56 per decade: (0.56 - 0.08) 9 x 3 = 13 <= 55 ahead, 4.3 extra per solve: 12 more solves keep
+  for (int i = 0; i < 12; ++i) factor_solve(r, stick, 5, 1e-9);
   EXPECT_EQ(r.setups(), 1u);
+  EXPECT_TRUE(r.keep(true, stick));
+  factor_solve(r, stick, 5, 1e-9);  // 13 x 4.3 = 56 extra iterations since the factorisation: refactor
+  EXPECT_FALSE(r.keep(true, stick));
+  factor_solve(r, stick, 1, 1e-13);
+  EXPECT_EQ(r.setups(), 2u);
   EXPECT_FALSE(r.keep(true, slip));  // a pair started slipping
   factor_solve(r, slip, 1, 1e-13);
-  EXPECT_EQ(r.setups(), 2u);
+  EXPECT_EQ(r.setups(), 3u);
   factor_solve(r, slip, 20, 1e-9);  // 2.2 per decade: (2.2 - 0.08) 9 x 3 = 58 > 55 refactorisation's worth
   EXPECT_FALSE(r.keep(true, slip));
   factor_solve(r, slip, 1, 1e-13);
-  EXPECT_EQ(r.setups(), 3u);
+  EXPECT_EQ(r.setups(), 4u);
   EXPECT_TRUE(r.keep(true, slip));
   r.drop();  // after a failure
   EXPECT_FALSE(r.keep(true, slip));

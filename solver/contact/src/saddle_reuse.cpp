@@ -29,7 +29,7 @@ void SaddleReuse::record(int iterations, double decades, bool fresh, const std::
 }
 
 bool FactorReuse::keep(bool allowed, const std::vector<double>& signature) const {
-  return allowed && built_ && signature == signature_ &&
+  return allowed && built_ && signature == signature_ && extra_ < mech::kRefactorIterations &&
          mech::keep_factorization(baseline_ipd_, last_ipd_, last_decades_, mech::kRefactorIterations, mech::kFactorHorizon);
 }
 
@@ -40,9 +40,12 @@ void FactorReuse::record(int iterations, double reduction, bool fresh, const std
   last_ipd_ = iterations / last_decades_;
   if (fresh) {
     baseline_ipd_ = last_ipd_;
+    extra_ = 0;
     signature_ = signature;
     built_ = true;
     ++setups_;
+  } else {
+    extra_ += std::max(0.0, (last_ipd_ - baseline_ipd_) * last_decades_);
   }
 }
 

@@ -59,6 +59,11 @@ private:
 //   - the iterations it costs beyond a fresh factorisation, over the next kFactorHorizon solves,
 //     exceed what a refactorisation costs (mech::keep_factorization, the continuous solver's rule):
 //     the hypo-plastic tangent and the friction rows move the operator away from its factors;
+//   - the iterations it has cost beyond a fresh factorisation since it was computed add up to what
+//     a refactorisation costs (the ski-rental rule: never more than twice the best choice made
+//     knowing the future). The rule above looks 3 solves ahead only; a whole history's storage
+//     steps run hundreds of solves on factors of the production's virgin-branch tangent at 14
+//     iterations each, where a refactorisation on the storage branch brings them back to 1-2;
 //   - a kept one fails to converge within its budget (the solve is repeated after refactoring).
 // Across Newton iterations and load steps alike: the rate rule decides, counts only (reuse_rule.hpp).
 class FactorReuse {
@@ -76,6 +81,7 @@ public:
 private:
   bool built_ = false;
   double baseline_ipd_ = 0, last_ipd_ = 0, last_decades_ = 0;
+  double extra_ = 0;  // iterations beyond the fresh rate, summed over the solves since the factorisation
   std::vector<double> signature_;
   std::size_t setups_ = 0;
 };
