@@ -1,11 +1,12 @@
-// The field split's preconditioner-reuse rule (solver/contact/src/saddle_reuse.hpp): counts of
-// setups over sequences of solves.
+// The field split's preconditioner-reuse rule and MUMPS' factorisation-reuse rule
+// (solver/contact/src/saddle_reuse.hpp): counts of setups over sequences of solves.
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "saddle_reuse.hpp"
 
+using ugs::contact::detail::FactorReuse;
 using ugs::contact::detail::SaddleReuse;
 
 namespace {
@@ -75,4 +76,43 @@ TEST(SaddleReuse, NonlinearStepsSetUpEverySolveAndTheNextStepToo) {
   EXPECT_EQ(r.setups(), 5u);
   for (int k = 0; k < 6; ++k) solve(r, s, 5, 1.0);
   EXPECT_EQ(r.setups(), 5u);
+}
+
+namespace {
+// A solve through the factorisation rule: `its` GMRES iterations reducing the residual by `reduction`.
+void factor_solve(FactorReuse& r, const std::vector<double>& sig, int its, double reduction, bool allowed = true) {
+  const bool keep = r.keep(allowed, sig);
+  r.record(its, reduction, !keep, sig);
+}
+}  // namespace
+
+TEST(SaddleFactorReuse, KeptWhileTheActiveSetTheRateAndTheExtraIterationsHold) {
+  FactorReuse r;
+  const std::vector<double> stick{1.0, 1.0, 1.0}, slip{1.0, 0.0, 0.0};
+  factor_solve(r, stick, 1, 1e-13);  // fresh factors: 1 iteration, 13 decades (0.077 per decade)
+  for (int i = 0; i < 20; ++i) factor_solve(r, stick, 1, 1e-12);  // as good as fresh: nothing extra
+  // 0.56 per decade: (0.56 - 0.08) 9 x 3 = 13 <= 55 ahead, 4.3 extra per solve: 12 more solves keep
+  for (int i = 0; i < 12; ++i) factor_solve(r, stick, 5, 1e-9);
+  EXPECT_EQ(r.setups(), 1u);
+  EXPECT_TRUE(r.keep(true, stick));
+  factor_solve(r, stick, 5, 1e-9);  // 13 x 4.3 = 56 extra iterations since the factorisation: refactor
+  EXPECT_FALSE(r.keep(true, stick));
+  factor_solve(r, stick, 1, 1e-13);
+  EXPECT_EQ(r.setups(), 2u);
+  EXPECT_FALSE(r.keep(true, slip));  // a pair started slipping
+  factor_solve(r, slip, 1, 1e-13);
+  EXPECT_EQ(r.setups(), 3u);
+  factor_solve(r, slip, 20, 1e-9);  // 2.2 per decade: (2.2 - 0.08) 9 x 3 = 58 > 55 refactorisation's worth
+  EXPECT_FALSE(r.keep(true, slip));
+  factor_solve(r, slip, 1, 1e-13);
+  EXPECT_EQ(r.setups(), 4u);
+  EXPECT_TRUE(r.keep(true, slip));
+  r.drop();  // after a failure
+  EXPECT_FALSE(r.keep(true, slip));
+  FactorReuse off;
+  for (int i = 0; i < 4; ++i) factor_solve(off, stick, 1, 1e-13, false);
+  EXPECT_EQ(off.setups(), 4u);
+  // A kept factorisation gets 10 iterations per decade of the tolerance.
+  EXPECT_EQ(FactorReuse::budget(1e-8), 80);
+  EXPECT_EQ(FactorReuse::budget(1e-3), 30);
 }

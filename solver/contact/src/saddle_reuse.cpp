@@ -1,6 +1,7 @@
 #include "saddle_reuse.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "ugs/mechanics/reuse_rule.hpp"
 
@@ -25,6 +26,32 @@ void SaddleReuse::record(int iterations, double decades, bool fresh, const std::
     built_ = true;
     ++setups_;
   }
+}
+
+bool FactorReuse::keep(bool allowed, const std::vector<double>& signature) const {
+  return allowed && built_ && signature == signature_ && extra_ < mech::kRefactorIterations &&
+         mech::keep_factorization(baseline_ipd_, last_ipd_, last_decades_, mech::kRefactorIterations, mech::kFactorHorizon);
+}
+
+void FactorReuse::record(int iterations, double reduction, bool fresh, const std::vector<double>& signature) {
+  // As the continuous solver counts (linear_solve.cpp): at least 0.3 decades, so that a solve that
+  // had little to reduce does not look expensive.
+  last_decades_ = std::max(std::log10(1.0 / std::max(reduction, 1e-300)), 0.3);
+  last_ipd_ = iterations / last_decades_;
+  if (fresh) {
+    baseline_ipd_ = last_ipd_;
+    extra_ = 0;
+    signature_ = signature;
+    built_ = true;
+    ++setups_;
+  } else {
+    extra_ += std::max(0.0, (last_ipd_ - baseline_ipd_) * last_decades_);
+  }
+}
+
+int FactorReuse::budget(double rtol) {
+  const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
+  return static_cast<int>(std::ceil(2 * mech::kFactorIterationsPerDecade * decades));
 }
 
 }  // namespace ugs::contact::detail

@@ -1,5 +1,6 @@
 // When the field split keeps its preconditioner (the displacement block's multigrid hierarchy and
-// the Schur approximation) and when it builds a new one (SaddlePointSolver, docs/fault-mechanics.md).
+// the Schur approximation) and when it builds a new one (SaddlePointSolver, docs/fault-mechanics.md);
+// below, FactorReuse: when MUMPS keeps its factorisation.
 //
 // A kept hierarchy runs on a frozen copy of the augmented displacement block, so that GAMG's
 // Chebyshev bounds stay those of the matrix it was built from (the mechanics' own rule, solver_impl.hpp
@@ -48,6 +49,41 @@ private:
   std::size_t setups_ = 0;
   int solves_in_step_ = 0;
   bool last_step_linear_ = true;
+};
+
+// When MUMPS keeps its factorisation of the saddle-point matrix. A kept factorisation
+// preconditions GMRES on the current matrix (the same factors for an unchanged operator: one
+// iteration, the same bits as a refactorisation); it is refactored when
+//   - the active set changed (`signature`, as for the field split): a pair that starts or stops
+//     slipping, or opens, changes rows of B and D entirely;
+//   - the iterations it costs beyond a fresh factorisation, over the next kFactorHorizon solves,
+//     exceed what a refactorisation costs (mech::keep_factorization, the continuous solver's rule):
+//     the hypo-plastic tangent and the friction rows move the operator away from its factors;
+//   - the iterations it has cost beyond a fresh factorisation since it was computed add up to what
+//     a refactorisation costs (the ski-rental rule: never more than twice the best choice made
+//     knowing the future). The rule above looks 3 solves ahead only; a whole history's storage
+//     steps run hundreds of solves on factors of the production's virgin-branch tangent at 14
+//     iterations each, where a refactorisation on the storage branch brings them back to 1-2;
+//   - a kept one fails to converge within its budget (the solve is repeated after refactoring).
+// Across Newton iterations and load steps alike: the rate rule decides, counts only (reuse_rule.hpp).
+class FactorReuse {
+public:
+  bool keep(bool allowed, const std::vector<double>& signature) const;
+  // After a solve: its iterations and its residual reduction ||r|| / ||b||; `fresh` when the
+  // factorisation was computed for it (then `signature` becomes the reference).
+  void record(int iterations, double reduction, bool fresh, const std::vector<double>& signature);
+  void drop() { built_ = false; }
+  // The iteration budget of a solve to rtol with a kept factorisation, and with a fresh one (which
+  // needs one or two: more means the factors are not accurate enough, a failed solve).
+  static int budget(double rtol);
+  std::size_t setups() const { return setups_; }
+
+private:
+  bool built_ = false;
+  double baseline_ipd_ = 0, last_ipd_ = 0, last_decades_ = 0;
+  double extra_ = 0;  // iterations beyond the fresh rate, summed over the solves since the factorisation
+  std::vector<double> signature_;
+  std::size_t setups_ = 0;
 };
 
 }  // namespace ugs::contact::detail

@@ -1,6 +1,7 @@
 // Saddle solver of the contact solver: the linear solve of the Newton system (saddle_system.hpp)
 // with PETSc, either
-//   MUMPS        the block matrix converted to AIJ and factorised (LU), or
+//   MUMPS        the block matrix converted to AIJ and factorised (LU); the factors kept while the
+//                active set is unchanged and GMRES preconditioned by them converges fast (saddle_reuse.hpp), or
 //   field split  FGMRES with a Schur-complement field split: the displacement block augmented with
 //                the constraint rows (K + gamma C W B, augmented Lagrangian) under algebraic
 //                multigrid, the multiplier block by selfp; the preconditioner (on a frozen copy
@@ -45,8 +46,11 @@ public:
   void begin_step() { reuse_.begin_step(); }
 
 private:
-  // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split).
-  void augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, const std::vector<PairEquations>& eq, PetscScalar* rl);
+  // The active set's signature: the augmentation weight gamma / A_q of every constraint row (stick,
+  // the normal of a slipping pair), 0 elsewhere; the weights W of the field split's augmentation.
+  void active_set(const PairDistribution& pd, const std::vector<PairEquations>& eq);
+  // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split; W from active_set).
+  void augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, PetscScalar* rl);
   // The operator, the preconditioner and KSPSolve on rhs_ into sol_; throws ComputeError on a PETSc error.
   PetscInt linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason);
   // After a failure: drops the factorisation or hierarchy and the block operator, so that the next
@@ -65,6 +69,7 @@ private:
   bool configured_ = false;  // KSPSetFromOptions done since the last reset
   PatternSum kg_sum_;  // K + G into K_gamma's values in place
   SaddleReuse reuse_;  // when the field split keeps its preconditioner
+  FactorReuse factors_;  // when MUMPS keeps its factorisation
   std::vector<double> signature_;  // the augmentation weight of every multiplier row (the active set)
   SaddleGuess guess_;  // the field split's first iterate from the last solutions
   double guess_ratio_ = 1;  // ||b - J x0|| / ||b|| of the last solve's first iterate

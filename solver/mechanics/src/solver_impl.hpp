@@ -13,6 +13,7 @@
 #include <functional>
 #include <petscksp.h>
 #include "local_mesh.hpp"
+#include "ugs/mechanics/reuse_rule.hpp"
 #include "petsc_check.hpp"
 #include "ugs/fem/tet4.hpp"
 #include "ugs/formats/error.hpp"
@@ -120,8 +121,7 @@ struct Assembler {
 // Preconditioner-reuse policy: what the last setup and solves cost, in iteration counts only
 // (never measured time: the decision changes the numbers, reuse_rule.hpp, linear_solve.cpp).
 struct PreconditionerReuse {
-  static constexpr double kFactorIpd = 5.0;      // iterations per decade a kept factorization gets
-  static constexpr double kFactorHorizon = 3.0;  // solves over which a refactor must pay off (reuse_rule.hpp)
+  static constexpr double kFactorIpd = kFactorIterationsPerDecade;  // (reuse_rule.hpp)
   bool valid = false;                  // a preconditioner has been set up
   double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
   int setups = 0;

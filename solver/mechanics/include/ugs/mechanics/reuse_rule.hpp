@@ -15,6 +15,11 @@ namespace ugs::mech {
 // flops at these sizes); 60 on the 26,547-node po-plain mesh (2.9 s against 48 ms).
 inline constexpr double kRefactorIterations = 55.0;
 
+// A kept factorization gets this many iterations per decade of the solve's tolerance, twice over,
+// before it is refactored and the solve repeated; a refactorization must pay off over this many solves.
+inline constexpr double kFactorIterationsPerDecade = 5.0;
+inline constexpr double kFactorHorizon = 3.0;
+
 // A factorization is kept while the iterations it costs beyond those right after it was computed,
 // over the next `horizon` solves, stay within what a refactorization costs (kRefactorIterations):
 //   (last_ipd - baseline_ipd) * last_decades * horizon <= refactor_iterations
