@@ -239,6 +239,11 @@ class Newton {
   // from converging (thesis-scale box, 1950-02: 21 iterations with 2 changes, or no convergence on
   // another partition). The held branches are checked at convergence (held_off_branch).
   static constexpr int kHoldOnFirstChangeFrom = 3;
+  // Corrections::Bounded: no correction leaves more than kCorrectionBound x tolerance x r_0 of
+  // residual, so the iterates on which the holds are decided are within 50 times the Newton
+  // tolerance of an exact Newton's (docs/mechanics.md: the held set first changed at 10,000 x
+  // tolerance on test_locked_history, at 200 x on the scale-0.05 thesis box: a margin of 4 there).
+  static constexpr double kCorrectionBound = 50;
   void track_branches(int k);
   // Whether an element's tangent changed with its loading phase since `phase_before`.
   bool tangent_moved(std::size_t h, int phase_before) const;

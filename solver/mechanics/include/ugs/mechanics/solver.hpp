@@ -32,6 +32,15 @@ enum class LinearSolver { CgGamg, CgHypre, Mumps, Cholmod };
 LinearSolver parse_linear_solver(const std::string& s);
 const char* linear_solver_name(LinearSolver s);
 
+// How accurately the linear solve of each Newton correction is done on models with hypo-plastic
+// elements, where the elements held at their knee, and so the answer, are decided on the iterates
+// (docs/mechanics.md "Newton corrections of hypo-plastic models"). Other models use Eisenstat-Walker.
+enum class Corrections {
+  Bounded,          // Eisenstat-Walker, never leaving more than 50 x tolerance x r_0 (the default)
+  Exact,            // to 0.5 x tolerance x r_0 every time (sessions 9-12; `-ugs_exact_newton`)
+  EisenstatWalker,  // Eisenstat-Walker alone (`-ugs_inexact_newton`): faster, the answer moves with the solver
+};
+
 struct SolverOptions {
   LinearSolver linear = LinearSolver::CgHypre;
   PartitionMethod partition = PartitionMethod::PtScotch;
@@ -39,6 +48,7 @@ struct SolverOptions {
   int max_newton = 25;
   int max_substeps = 64;
   bool reuse_preconditioner = true;
+  Corrections corrections = Corrections::Bounded;  // PETSc's -ugs_exact_newton / -ugs_inexact_newton override it
 };
 
 struct StepReport {
