@@ -198,6 +198,13 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   const auto ew = test::run(ens_cmd(dir, "run", "lhs.toml", "--measured-east " + (dir / "east.csv").string() + " --east-weight -1 -o " + (dir / "bad").string()));
   EXPECT_TRUE(one_line(ew)) << ew.err;
   EXPECT_NE(ew.err.find("--east-weight"), std::string::npos) << ew.err;
+  // The libraries name these settings in words; the line names the flags typed (issue 23).
+  const auto bc = test::run(ens_cmd(dir, "run", "lhs.toml", "--crs EPSG:nothing -o " + (dir / "bad").string()));
+  EXPECT_TRUE(one_line(bc)) << bc.err;
+  EXPECT_EQ(bc.err, "ugs-ensemble: error: --crs: unknown coordinate reference system 'EPSG:nothing' (e.g. \"EPSG:32632\")\n");
+  const auto bp = test::run(ens_cmd(dir, "run", "lhs.toml", "--phase storage -o " + (dir / "bad").string()));
+  EXPECT_TRUE(one_line(bp)) << bp.err;
+  EXPECT_EQ(bp.err, "ugs-ensemble: error: --phase storage: expected NAME=START/END, e.g. storage=2015-05-01/2015-11-01\n");
   EXPECT_FALSE(fs::exists(dir / "bad"));
   EXPECT_FALSE(fs::exists(dir / "bad.cache"));
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(dir);

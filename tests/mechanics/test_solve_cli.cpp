@@ -796,7 +796,7 @@ TEST(SolveTool, PredictorAfterReloadingPastSigmaMaxReducesTheResidual) {
   EXPECT_EQ(steps, 5u) << r.err;
   EXPECT_EQ(predictions, 3u) << r.out << r.err;  // steps 3-5 (step 2 has no earlier increment)
   // -v names the Krylov method that runs: GMRES for the non-symmetric hypo-plastic tangent.
-  EXPECT_NE(r.err.find("KSP gmres + PC hypre (--solver cg-hypre, with GMRES: the hypo-plastic tangent is not symmetric)"),
+  EXPECT_NE(r.err.find("KSP gmres + PC hypre (linear solver cg-hypre, with GMRES: the hypo-plastic tangent is not symmetric)"),
             std::string::npos) << r.err;
 }
 
