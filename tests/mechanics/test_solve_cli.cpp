@@ -179,7 +179,7 @@ TEST_P(SolveV1, OedometerPathThroughTheTool) {
     const double s_max = smax.values[c] * 1e-6;
     EXPECT_NEAR(s_max, 28.0, 0.02);
     if (rule != "stress-dependent") {
-      EXPECT_NEAR(cm.values[c] / (cM(s_max) / 3.0 * 1e-6), 1.0, 1e-9);
+      EXPECT_NEAR(cm.values[c] / (test::v1::cM(s_max) / 3.0 * 1e-6), 1.0, 1e-9);
     }
   }
 }
