@@ -54,8 +54,11 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
         m.number(i, m.column("mu_star"));
   }
   // No influence: the same answer bit for bit, so every effect is exactly 0.
-  for (const auto& [k, v] : mu_star)
-    if (k.find("scale_tolerance") != std::string::npos) EXPECT_EQ(v, 0.0) << k;
+  for (const auto& [k, v] : mu_star) {
+    if (k.find("scale_tolerance") != std::string::npos) {
+      EXPECT_EQ(v, 0.0) << k;
+    }
+  }
   // c_R of Pool C decides how far the ground rises over the storage half-cycle.
   EXPECT_GT(mu_star.at("uplift_max_mm.storage|material.pool_c.c_R"), 0.5);
   std::printf("mu*(uplift, c_R) = %.4f mm, mu*(uplift, scale_tolerance) = %g\n",
