@@ -172,7 +172,7 @@ TEST(FaultTraces, BadTraces) {
   t.parts = {{{0, 0}, {10, 0}}, {{5, -5}, {5, 5}}};
   EXPECT_NE(bad(t).find("touches another of its parts near (5.00, 0.00)"), std::string::npos) << bad(t);
   t.parts = {{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}};  // closed ring: fine
-  EXPECT_EQ(bad(t), "(no error)");
+  EXPECT_EQ(bad(t), "(no InputError)");
   t.parts = {{{0, 0}, {0, 0}}};
   EXPECT_NE(bad(t).find("fewer than two distinct points"), std::string::npos);
   t.parts = {{{0, 0}, {1, 0}}};
