@@ -176,7 +176,7 @@ void check_geometry(const CPLJSONObject& g, const std::function<void(const std::
 // feature and the value (files up to 1 GB; larger ones are left to GDAL).
 void check_geojson_coordinates(const std::string& path) {
   VSIStatBufL st;
-  if (VSIStatL(path.c_str(), &st) != 0 || st.st_size > (static_cast<vsi_l_offset>(1) << 30)) return;
+  if (VSIStatL(path.c_str(), &st) != 0 || st.st_size > (decltype(st.st_size){1} << 30)) return;
   CPLJSONDocument doc;
   if (!doc.Load(path)) return;  // GDAL read it: its own parser is more lenient; nothing to add
   const CPLJSONObject root = doc.GetRoot();

@@ -54,8 +54,11 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
         m.number(i, m.column("mu_star"));
   }
   // No influence: the same answer bit for bit, so every effect is exactly 0.
-  for (const auto& [k, v] : mu_star)
-    if (k.find("scale_tolerance") != std::string::npos) EXPECT_EQ(v, 0.0) << k;
+  for (const auto& [k, v] : mu_star) {
+    if (k.find("scale_tolerance") != std::string::npos) {
+      EXPECT_EQ(v, 0.0) << k;
+    }
+  }
   // c_R of Pool C decides how far the ground rises over the storage half-cycle.
   EXPECT_GT(mu_star.at("uplift_max_mm.storage|material.pool_c.c_R"), 0.5);
   std::printf("mu*(uplift, c_R) = %.4f mm, mu*(uplift, scale_tolerance) = %g\n",
@@ -198,6 +201,13 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   const auto ew = test::run(ens_cmd(dir, "run", "lhs.toml", "--measured-east " + (dir / "east.csv").string() + " --east-weight -1 -o " + (dir / "bad").string()));
   EXPECT_TRUE(one_line(ew)) << ew.err;
   EXPECT_NE(ew.err.find("--east-weight"), std::string::npos) << ew.err;
+  // The libraries name these settings in words; the line names the flags typed (issue 23).
+  const auto bc = test::run(ens_cmd(dir, "run", "lhs.toml", "--crs EPSG:nothing -o " + (dir / "bad").string()));
+  EXPECT_TRUE(one_line(bc)) << bc.err;
+  EXPECT_EQ(bc.err, "ugs-ensemble: error: --crs: unknown coordinate reference system 'EPSG:nothing' (e.g. \"EPSG:32632\")\n");
+  const auto bp = test::run(ens_cmd(dir, "run", "lhs.toml", "--phase storage -o " + (dir / "bad").string()));
+  EXPECT_TRUE(one_line(bp)) << bp.err;
+  EXPECT_EQ(bp.err, "ugs-ensemble: error: --phase storage: expected NAME=START/END, e.g. storage=2015-05-01/2015-11-01\n");
   EXPECT_FALSE(fs::exists(dir / "bad"));
   EXPECT_FALSE(fs::exists(dir / "bad.cache"));
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(dir);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "input_error.hpp"
 #include "fault_meshes.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/error.hpp"
@@ -33,14 +34,6 @@ FaultTrace trace(std::string name, std::vector<std::array<double, 2>> line, doub
   return t;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 TEST(FaultSelect, VerticalBuriedTrace) {
   Mesh m = unit_box(6);
@@ -117,11 +110,11 @@ TEST(FaultSelect, DepthLimitsBetweenLevelsFollowTheMidDepthRule) {
 TEST(FaultSelect, CoverageTooLowSaysHowMuchAndWhatToDo) {
   Mesh m = unit_box(6);
   // Off the grid planes: no face lies on it.
-  auto e = error_of([&] { select_fault_faces(m, {trace("off", {{3.5, 1}, {3.5, 5}}, 5, 1, 90, 90)}); });
+  auto e = test::input_error_of([&] { select_fault_faces(m, {trace("off", {{3.5, 1}, {3.5, 5}}, 5, 1, 90, 90)}); });
   EXPECT_NE(e.find("traces: fault 'off': mesh faces cover 0.0 % of its"), std::string::npos) << e;
   EXPECT_NE(e.find("embed the trace in the plan"), std::string::npos) << e;
   // Half on the grid: x = 3 up to y = 3, then off the planes to (4, 6).
-  e = error_of([&] { select_fault_faces(m, {trace("half", {{3, 0}, {3, 3}, {4, 6}}, 6, 0, 90, 90)}); });
+  e = test::input_error_of([&] { select_fault_faces(m, {trace("half", {{3, 0}, {3, 3}, {4, 6}}, 6, 0, 90, 90)}); });
   EXPECT_NE(e.find("fault 'half': mesh faces cover 48.7 %"), std::string::npos) << e;
   EXPECT_EQ(m.find_physical(2, "fault:half"), nullptr);  // nothing added on error
   // A lower threshold lets it through.
@@ -132,9 +125,9 @@ TEST(FaultSelect, CoverageTooLowSaysHowMuchAndWhatToDo) {
 
 TEST(FaultSelect, DepthRangeOutsideTheMesh) {
   Mesh m = unit_box(6);
-  const auto e = error_of([&] { select_fault_faces(m, {trace("deep", {{3, 1}, {3, 5}}, -10, -20, 90, 90)}); });
+  const auto e = test::input_error_of([&] { select_fault_faces(m, {trace("deep", {{3, 1}, {3, 5}}, -10, -20, 90, 90)}); });
   EXPECT_NE(e.find("fault 'deep': its depth range, top_m -10.0 to bottom_m -20.0, lies outside the mesh"), std::string::npos) << e;
-  const auto e2 = error_of([&] { select_fault_faces(m, {trace("away", {{30, 1}, {30, 5}}, 5, 1, 90, 90)}); });
+  const auto e2 = test::input_error_of([&] { select_fault_faces(m, {trace("away", {{30, 1}, {30, 5}}, 5, 1, 90, 90)}); });
   EXPECT_NE(e2.find("fault 'away': its surface does not cross the mesh"), std::string::npos) << e2;
 }
 
@@ -159,12 +152,12 @@ TEST(FaultSelect, AlreadyInsertedIsRefused) {
   Mesh m = unit_box(4);
   add_fault_group(m, "F", [](const Point3& p) { return near(p[0], 2); });
   insert_faults(m);
-  const auto e = error_of([&] { select_fault_faces(m, {trace("F", {{2, 0}, {2, 4}}, 4, 0, 90, 90)}); });
+  const auto e = test::input_error_of([&] { select_fault_faces(m, {trace("F", {{2, 0}, {2, 4}}, 4, 0, 90, 90)}); });
   EXPECT_NE(e.find("fault 'F' already has interface elements"), std::string::npos) << e;
 }
 
 TEST(FaultTraces, BadTraces) {
-  auto bad = [](FaultTrace t) { return error_of([&] { check_fault_trace(t); }); };
+  auto bad = [](FaultTrace t) { return test::input_error_of([&] { check_fault_trace(t); }); };
   FaultTrace t;
   t.name = "x";
   t.where = "f.geojson: feature 2";
@@ -179,7 +172,7 @@ TEST(FaultTraces, BadTraces) {
   t.parts = {{{0, 0}, {10, 0}}, {{5, -5}, {5, 5}}};
   EXPECT_NE(bad(t).find("touches another of its parts near (5.00, 0.00)"), std::string::npos) << bad(t);
   t.parts = {{{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}};  // closed ring: fine
-  EXPECT_EQ(bad(t), "(no error)");
+  EXPECT_EQ(bad(t), "(no InputError)");
   t.parts = {{{0, 0}, {0, 0}}};
   EXPECT_NE(bad(t).find("fewer than two distinct points"), std::string::npos);
   t.parts = {{{0, 0}, {1, 0}}};
@@ -216,7 +209,7 @@ TEST(FaultTraces, FileErrorsNameTheFeatureAndTheFault) {
                 R"(,"geometry":)" + geom + "}]}");
     return p.string();
   };
-  auto err = [&](const std::string& path) { return error_of([&] { read_fault_traces(path); }); };
+  auto err = [&](const std::string& path) { return test::input_error_of([&] { read_fault_traces(path); }); };
   EXPECT_NE(err(write(R"({"name":"a","top_m":0,"bottom_m":-10,"dip_deg":60})")).find("feature 0: fault 'a': missing field 'dip_dir_deg'"),
             std::string::npos);
   EXPECT_NE(err(write(R"({"name":"a","top_m":0,"bottom_m":-10,"dip_deg":"steep","dip_dir_deg":0})")).find("field 'dip_deg' is not a number"),

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/contact.hpp"
 #include "ugs/contact/fault_model.hpp"
@@ -34,21 +35,10 @@ constexpr int kNewtonBound = 6;
 CaseFile slab_case(double friction_deg) {
   CaseFile c;
   c.path = "crack.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "crack.toml:1";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = kE;
-  m.nu_z = kNu;
-  c.materials.push_back(m);
+  c.materials.push_back(test::linear_material("rock", "crack.toml:1", kE, kNu));
   c.fixed_boundaries.clear();
   c.roller_boundaries = {"west", "east", "south", "north", "bottom", "top"};
-  FaultSpec f;
-  f.name = "crack";
-  f.where = "crack.toml:2";
-  f.cohesion_Pa = 0;
-  f.friction_deg = friction_deg;
-  c.faults.push_back(f);
+  c.faults.push_back(test::fault_spec("crack", "crack.toml:2", 0, friction_deg));
   return c;
 }
 

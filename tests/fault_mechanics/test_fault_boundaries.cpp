@@ -21,11 +21,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <map>
 
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include "case_builders.hpp"
+#include "cell_values.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/contact.hpp"
 #include "ugs/contact/fault_model.hpp"
@@ -43,37 +44,17 @@ const double kTilt = std::tan(1e-4 * M_PI / 180);  // 1e-4 degrees
 CaseFile boundary_case(double cohesion_Pa, double friction_deg) {
   CaseFile c;
   c.path = "bound.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "bound.toml:1";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = 10e9;
-  m.nu_z = 0.25;
-  c.materials.push_back(m);
+  c.materials.push_back(test::linear_material("rock", "bound.toml:1", 10e9, 0.25));
   c.initial_stress.k0 = 0.7;
   c.fixed_boundaries = {};
   c.roller_boundaries = {"west", "east", "south", "north", "bottom"};
-  FaultSpec f;
-  f.name = "F";
-  f.where = "bound.toml:2";
-  f.cohesion_Pa = cohesion_Pa;
-  f.friction_deg = friction_deg;
-  c.faults.push_back(f);
+  c.faults.push_back(test::fault_spec("F", "bound.toml:2", cohesion_Pa, friction_deg));
   return c;
 }
 
 using Region = std::function<bool(const Point3&)>;
 
-std::vector<double> cell_dp(const mech::Model& model, const Region& in, double dp) {
-  std::vector<double> v(model.tets.size(), 0.0);
-  for (std::size_t e = 0; e < v.size(); ++e) {
-    Point3 c{0, 0, 0};
-    for (auto n : model.tets[e])
-      for (int d = 0; d < 3; ++d) c[d] += 0.25 * model.x[n][d];
-    if (in(c)) v[e] = dp;
-  }
-  return v;
-}
+std::vector<double> cell_dp(const mech::Model& model, const Region& in, double dp) { return test::cell_values_in(model, in, dp); }
 
 mech::SolverOptions solver_options() {
   mech::SolverOptions opt;
@@ -131,12 +112,11 @@ Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double d
 // max |u_faulted - u_continuous| / max |u_continuous| over every node (twins compare with the
 // node they were copied from, found by position).
 double relative_difference(const Mesh& plain, const std::vector<double>& u0, const Mesh& mesh, const std::vector<double>& u1) {
-  std::map<Point3, std::uint32_t> at;
-  for (std::uint32_t i = 0; i < plain.num_nodes(); ++i) at[plain.nodes[i]] = i;
+  const auto orig = test::original_nodes(mesh, plain);
   double umax = 0, diff = 0;
   for (double v : u0) umax = std::max(umax, std::abs(v));
   for (std::uint32_t i = 0; i < mesh.num_nodes(); ++i) {
-    const std::uint32_t o = at.at(mesh.nodes[i]);
+    const std::uint32_t o = orig[i];
     for (int c = 0; c < 3; ++c) diff = std::max(diff, std::abs(u1[3 * i + c] - u0[3 * o + c]));
   }
   EXPECT_GT(umax, 1e-3);
@@ -324,20 +304,23 @@ TEST(SlabFailure, CyclingStateNamesTheFaultAndPairs) {
 // failed: DIVERGED_PC_FAILED"): the slab with the pairs' frames put back to the fault frame with
 // every component active (the former rule: the strike's free part, tan(1e-4 deg), passed its 1e-9
 // threshold) makes the saddle-point system singular.
+namespace {
+void former_frames(contact::FaultModel& fm) {
+  for (auto& p : fm.pairs) {
+    // The tilted normal (the slab's x += tilt y tilts n by n_y = -tilt n_x).
+    Point3 n{p.R[2], -kTilt * p.R[2], p.R[8]};
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& c : n) c /= l;
+    p.R = contact::fault_frame(n);
+    p.active = 7;
+  }
+}
+}  // namespace
+
 TEST(SlabFailure, DivergenceNamesTheFaultAndPairs) {
   Mesh mesh = test::dipping_slab(false, kTilt);
   test::insert_all_faults(mesh);
-  auto former = [](contact::FaultModel& fm) {
-    for (auto& p : fm.pairs) {
-      // The tilted normal (the slab's x += tilt y tilts n by n_y = -tilt n_x).
-      Point3 n{p.R[2], -kTilt * p.R[2], p.R[8]};
-      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (double& c : n) c /= l;
-      p.R = contact::fault_frame(n);
-      p.active = 7;
-    }
-  };
-  const Faulted f = faulted(mesh, boundary_case(0, 15), slab_block, -20e6, 4, former, 1);
+  const Faulted f = faulted(mesh, boundary_case(0, 15), slab_block, -20e6, 4, former_frames, 1);
   ASSERT_FALSE(f.geostatic.converged && f.load.converged);
   const std::string& why = f.geostatic.converged ? f.load.failure : f.geostatic.failure;
   std::printf("%s\n", why.substr(0, 300).c_str());
@@ -353,17 +336,8 @@ TEST(SlabFailure, DivergenceNamesTheFaultAndPairs) {
 TEST(SlabFailure, SingularSystemIsRetriedThenFailsCleanly) {
   Mesh mesh = test::dipping_slab(false, kTilt);
   test::insert_all_faults(mesh);
-  auto former = [](contact::FaultModel& fm) {
-    for (auto& p : fm.pairs) {
-      Point3 n{p.R[2], -kTilt * p.R[2], p.R[8]};
-      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (double& c : n) c /= l;
-      p.R = contact::fault_frame(n);
-      p.active = 7;
-    }
-  };
   Faulted f;
-  ASSERT_NO_THROW(f = faulted(mesh, boundary_case(0, 15), slab_block, -20e6, 4, former, 64));
+  ASSERT_NO_THROW(f = faulted(mesh, boundary_case(0, 15), slab_block, -20e6, 4, former_frames, 64));
   ASSERT_FALSE(f.geostatic.converged && f.load.converged);
   const std::string& why = f.geostatic.converged ? f.load.failure : f.geostatic.failure;
   std::printf("%s\n", why.substr(0, 300).c_str());

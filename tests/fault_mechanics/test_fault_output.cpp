@@ -21,7 +21,7 @@ using V3 = std::array<double, 3>;
 FaultModel quad(const V3& o, const V3& u, const V3& v, const V3& n) {
   FaultModel fm;
   fm.faults.resize(1);
-  fm.faults[0].name = "Q";
+  fm.faults[0].name = std::string("Q");  // not = "Q": GCC 12 warns falsely (-Wrestrict) on that assignment
   const double ab[4][2] = {{0, 0}, {300, 0}, {300, 200}, {0, 200}};
   for (int i = 0; i < 4; ++i) {
     Point3 x;

@@ -26,12 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Dir {
-  fs::path path;
-  explicit Dir(const std::string& tag) : path(test::temp_dir(tag)) {}
-  ~Dir() { fs::remove_all(path); }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
+using Dir = test::TempDir;
 
 std::string solve(const Dir& d, const std::string& args) {
   return test::tool("ugs-solve") + " " + d / "faulted.msh" + " --case " + d / "case.toml" + " --pressure " + d / "flow.h5" + " " +

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/fault_model.hpp"
 #include "ugs/fem/voigt.hpp"
@@ -123,21 +124,12 @@ Mesh faulted_box(const FaultCase& f) {
 CaseFile faulted_case() {
   CaseFile c;
   c.path = "insitu.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "insitu.toml:1";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = 10e9;
-  m.nu_z = 0.25;
+  MaterialSpec m = test::linear_material("rock", "insitu.toml:1", 10e9, 0.25);
   m.biot = 0.9;
   c.materials.push_back(m);
   c.initial_stress.k_Hmax = 1.3;
   c.initial_stress.k_hmin = 0.9;
-  FaultSpec f;
-  f.name = "F";
-  f.where = "insitu.toml:2";
-  f.friction_deg = 30;
-  c.faults.push_back(f);
+  c.faults.push_back(test::fault_spec("F", "insitu.toml:2", 0.0, 30));
   return c;
 }
 

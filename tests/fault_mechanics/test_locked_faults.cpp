@@ -6,10 +6,11 @@
 //       tractions (Lagrange multipliers) equal the stress tensor projected on the plane, t = sigma n,
 //       to 1e-6 relative, in the local frame (strike, dip, normal).
 #include <cmath>
-#include <map>
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
+#include "cell_values.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/contact.hpp"
 #include "ugs/contact/fault_model.hpp"
@@ -23,37 +24,13 @@ using namespace ugs;
 
 namespace {
 
-MaterialSpec linear_rock(double E, double nu) {
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "test";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = E;
-  m.nu_z = nu;
-  return m;
-}
-
 CaseFile base_case(double cohesion_Pa) {
   CaseFile c;
   c.path = "test.toml";
-  c.materials.push_back(linear_rock(10e9, 0.25));
+  c.materials.push_back(test::linear_material("rock", "test", 10e9, 0.25));
   c.initial_stress.k0 = 0.7;
-  FaultSpec f;
-  f.name = "F";
-  f.where = "test.toml:1";
-  f.cohesion_Pa = cohesion_Pa;
-  f.friction_deg = 30;
-  c.faults.push_back(f);
+  c.faults.push_back(test::fault_spec("F", "test.toml:1", cohesion_Pa, 30));
   return c;
-}
-
-// Mesh node index of each node's original (twins map to the node they were copied from).
-std::vector<std::uint32_t> originals(const Mesh& faulted, const Mesh& plain) {
-  std::map<Point3, std::uint32_t> at;
-  for (std::uint32_t i = 0; i < plain.num_nodes(); ++i) at[plain.nodes[i]] = i;
-  std::vector<std::uint32_t> o(faulted.num_nodes());
-  for (std::uint32_t i = 0; i < faulted.num_nodes(); ++i) o[i] = at.at(faulted.nodes[i]);
-  return o;
 }
 
 }  // namespace
@@ -70,14 +47,9 @@ TEST_P(V6, LockedFaultEqualsContinuousSolution) {
 
   // Pressure change in a block crossed by the fault.
   auto dp_of = [](const mech::Model& model) {
-    std::vector<double> dp(model.tets.size(), 0.0);
-    for (std::size_t e = 0; e < dp.size(); ++e) {
-      Point3 c{0, 0, 0};
-      for (auto v : model.tets[e])
-        for (int d = 0; d < 3; ++d) c[d] += 0.25 * model.x[v][d];
-      if (c[0] > 300 && c[0] < 700 && c[1] > 100 && c[1] < 500 && c[2] > -700 && c[2] < -300) dp[e] = -10e6;
-    }
-    return dp;
+    return test::cell_values_in(
+        model, [](const Point3& c) { return c[0] > 300 && c[0] < 700 && c[1] > 100 && c[1] < 500 && c[2] > -700 && c[2] < -300; },
+        -10e6);
   };
   mech::SolverOptions opt;
   opt.linear = mech::LinearSolver::Mumps;
@@ -102,7 +74,7 @@ TEST_P(V6, LockedFaultEqualsContinuousSolution) {
   ASSERT_TRUE(r.converged) << r.failure;
   const auto u1 = faulted_solver.gather_displacement();
 
-  const auto orig = originals(faulted, plain);
+  const auto orig = test::original_nodes(faulted, plain);
   double umax = 0, diff = 0;
   for (double v : u0) umax = std::max(umax, std::abs(v));
   for (std::size_t i = 0; i < faulted.num_nodes(); ++i)

@@ -10,10 +10,11 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
+#include "cell_values.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/contact.hpp"
 #include "ugs/contact/fault_model.hpp"
@@ -41,12 +42,7 @@ CaseFile hypo_case() {
   c.materials.push_back(m);
   c.initial_stress.surface_elevation = 1000;  // the box spans 1,000-2,000 m of depth: sigma'_v 12.6-25 MPa
   c.initial_stress.k0 = 0.7;
-  FaultSpec f;
-  f.name = "F";
-  f.where = "test.toml:1";
-  f.cohesion_Pa = 1e11;  // 100 GPa: the fault cannot slip
-  f.friction_deg = 30;
-  c.faults.push_back(f);
+  c.faults.push_back(test::fault_spec("F", "test.toml:1", 1e11, 30));  // 100 GPa of cohesion: the fault cannot slip
   return c;
 }
 
@@ -57,24 +53,7 @@ bool root() {
   return rank == 0;
 }
 
-std::vector<std::uint32_t> originals(const Mesh& faulted, const Mesh& plain) {
-  std::map<Point3, std::uint32_t> at;
-  for (std::uint32_t i = 0; i < plain.num_nodes(); ++i) at[plain.nodes[i]] = i;
-  std::vector<std::uint32_t> o(faulted.num_nodes());
-  for (std::uint32_t i = 0; i < faulted.num_nodes(); ++i) o[i] = at.at(faulted.nodes[i]);
-  return o;
-}
-
-std::vector<double> block_dp(const mech::Model& model, double dp) {
-  std::vector<double> v(model.tets.size(), 0.0);
-  for (std::size_t e = 0; e < v.size(); ++e) {
-    Point3 c{0, 0, 0};
-    for (auto n : model.tets[e])
-      for (int d = 0; d < 3; ++d) c[d] += 0.25 * model.x[n][d];
-    if (in_block(c)) v[e] = dp;
-  }
-  return v;
-}
+std::vector<double> block_dp(const mech::Model& model, double dp) { return test::cell_values_in(model, in_block, dp); }
 
 }  // namespace
 
@@ -105,7 +84,7 @@ TEST_P(LockedHistory, LockedFaultKeepsTheContinuousHistory) {
 
   // Depletion to -6 MPa, recharge to -2 MPa, re-depletion to -8 MPa past the previous minimum.
   const std::vector<double> history{-2e6, -4e6, -6e6, -4e6, -2e6, -4e6, -7e6, -8e6};
-  const auto orig = originals(faulted, plain);
+  const auto orig = test::original_nodes(faulted, plain);
   double worst_u = 0, worst_s = 0;
   int seen[4] = {0, 0, 0, 0};  // most elements on each branch at one step (0 unused)
   std::vector<std::array<int, 4>> in_block_on(history.size());  // elements of the depleted block on each branch

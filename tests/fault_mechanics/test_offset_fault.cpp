@@ -26,6 +26,8 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
+#include "cell_values.hpp"
 #include "fault_meshes.hpp"
 #include "jansen_offset_fault.hpp"
 #include "ugs/contact/contact.hpp"
@@ -121,21 +123,10 @@ V8Result run_v8(const V8Options& o) {
 
   CaseFile cs;
   cs.path = "v8.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "v8.toml:1";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = r.E;
-  m.nu_z = r.nu;
-  cs.materials.push_back(m);
+  cs.materials.push_back(test::linear_material("rock", "v8.toml:1", r.E, r.nu));
   cs.fixed_boundaries.clear();
   cs.roller_boundaries = {"west", "east", "south", "north", "bottom", "top"};
-  FaultSpec f;
-  f.name = "F";
-  f.where = "v8.toml:2";
-  f.cohesion_Pa = 1e12;
-  f.friction_deg = 30;
-  cs.faults.push_back(f);
+  cs.faults.push_back(test::fault_spec("F", "v8.toml:2", 1e12, 30));
 
   mech::Model model = mech::build_model(mesh, cs, true);
   const fem::Vec6 sigma0{-50e6, -50e6, -50e6, 0, 0, 0};
@@ -143,15 +134,14 @@ V8Result run_v8(const V8Options& o) {
   init.total_stress = [&](const Point3&, double, const std::array<double, 2>&) { return sigma0; };
   init.pressure = [](const Point3&) { return 0.0; };
   const contact::FaultModel fm = contact::build_fault_model(mesh, cs, model, init);
-  std::vector<double> dp(model.tets.size(), 0.0);
-  for (std::size_t e = 0; e < dp.size(); ++e) {
-    Point3 c{0, 0, 0};
-    for (auto v : model.tets[e])
-      for (int d = 0; d < 3; ++d) c[d] += 0.25 * model.x[v][d];
-    const bool hanging = c[0] < r.fault_x(c[2]) && c[0] > -W && c[2] > cz[0] && c[2] < cz[2];
-    const bool foot = c[0] > r.fault_x(c[2]) && c[0] < W && c[2] > cz[1] && c[2] < cz[3];
-    if (hanging || foot) dp[e] = r.dp;
-  }
+  const std::vector<double> dp = test::cell_values_in(
+      model,
+      [&](const Point3& c) {
+        const bool hanging = c[0] < r.fault_x(c[2]) && c[0] > -W && c[2] > cz[0] && c[2] < cz[2];
+        const bool foot = c[0] > r.fault_x(c[2]) && c[0] < W && c[2] > cz[1] && c[2] < cz[3];
+        return hanging || foot;
+      },
+      r.dp);
 
   contact::ContactOptions copt;
   copt.solver = contact::SaddleSolver::Mumps;

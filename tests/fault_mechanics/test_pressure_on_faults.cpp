@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/mechanics/model.hpp"
@@ -25,18 +26,8 @@ double dp_of(const Point3& x) { return 1e5 + 200.0 * x[0] - 30.0 * x[1] + 75.0 *
 CaseFile linear_case() {
   CaseFile c;
   c.path = "test.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "test";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = 10e9;
-  m.nu_z = 0.25;
-  c.materials.push_back(m);
-  FaultSpec f;
-  f.name = "F";
-  f.where = "test.toml:1";
-  f.friction_deg = 30;
-  c.faults.push_back(f);
+  c.materials.push_back(test::linear_material("rock", "test", 10e9, 0.25));
+  c.faults.push_back(test::fault_spec("F", "test.toml:1", 0.0, 30));
   return c;
 }
 

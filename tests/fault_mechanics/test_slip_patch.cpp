@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/contact.hpp"
 #include "ugs/contact/fault_model.hpp"
@@ -41,20 +42,9 @@ Result run(contact::SaddleSolver solver, int max_state_changes = 4) {
   test::insert_all_faults(mesh);
   CaseFile cs;
   cs.path = "patch.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "patch.toml:1";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = 10e9;
-  m.nu_z = 0.25;
-  cs.materials.push_back(m);
+  cs.materials.push_back(test::linear_material("rock", "patch.toml:1", 10e9, 0.25));
   cs.initial_stress.k0 = 0.6;
-  FaultSpec f;
-  f.name = "F";
-  f.where = "patch.toml:2";
-  f.cohesion_Pa = 0;
-  f.friction_deg = 20;
-  cs.faults.push_back(f);
+  cs.faults.push_back(test::fault_spec("F", "patch.toml:2", 0, 20));
   const mech::Model model = mech::build_model(mesh, cs, true);
   Result r;
   r.fm = contact::build_fault_model(mesh, cs, model, contact::geostatic_fault_state(model.initial));

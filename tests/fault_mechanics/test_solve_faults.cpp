@@ -33,12 +33,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Dir {
-  fs::path path;
-  explicit Dir(const std::string& tag) : path(test::temp_dir(tag)) {}
-  ~Dir() { fs::remove_all(path); }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
+using Dir = test::TempDir;
 
 std::string make_case(const Dir& d, const std::string& args = "") {
   return std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/contact_make_case " + d.path.string() + " " + args;

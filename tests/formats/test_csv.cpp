@@ -4,6 +4,7 @@
 
 #include <functional>
 
+#include "input_error.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
 
@@ -17,14 +18,6 @@ CsvTable parse(std::string text, std::string name = "t.csv") {
   return CsvTable::read(*in);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
 
 }  // namespace
 
@@ -89,24 +82,24 @@ TEST(CsvRead, QuotesCommentsAndTrimming) {
 
 TEST(CsvRead, ErrorsNameFileLineAndColumn) {
   const CsvTable t = parse("date,p_MPa,id\n2000-01-01,1.5,7\n2000-02-01,abc,x\n2000-03-01,nan,\n2000-13-01,1e999,3\n");
-  EXPECT_EQ(error_of([&] { t.number(1, 1); }), "t.csv:3: column 'p_MPa': 'abc' is not a number");
-  EXPECT_EQ(error_of([&] { t.number(2, 1); }), "t.csv:4: column 'p_MPa': 'nan' is not a finite number");
-  EXPECT_EQ(error_of([&] { t.number(3, 1); }), "t.csv:5: column 'p_MPa': '1e999' is not a number");
-  EXPECT_EQ(error_of([&] { t.number(2, 2); }), "t.csv:4: column 'id': '' is not a number");
-  EXPECT_EQ(error_of([&] { t.integer(1, 2); }), "t.csv:3: column 'id': 'x' is not an integer");
+  EXPECT_EQ(test::input_error_of([&] { t.number(1, 1); }), "t.csv:3: column 'p_MPa': 'abc' is not a number");
+  EXPECT_EQ(test::input_error_of([&] { t.number(2, 1); }), "t.csv:4: column 'p_MPa': 'nan' is not a finite number");
+  EXPECT_EQ(test::input_error_of([&] { t.number(3, 1); }), "t.csv:5: column 'p_MPa': '1e999' is not a number");
+  EXPECT_EQ(test::input_error_of([&] { t.number(2, 2); }), "t.csv:4: column 'id': '' is not a number");
+  EXPECT_EQ(test::input_error_of([&] { t.integer(1, 2); }), "t.csv:3: column 'id': 'x' is not an integer");
   EXPECT_EQ(t.integer(0, 2), 7);
-  EXPECT_EQ(error_of([&] { t.dates("date"); }),
+  EXPECT_EQ(test::input_error_of([&] { t.dates("date"); }),
             "t.csv:5: column 'date': '2000-13-01' is not a date (YYYY-MM-DD, YYYY-MM-DDThh:mm:ss or YYYYMMDD)");
-  EXPECT_EQ(error_of([&] { t.column("q_m3"); }), "t.csv: no column 'q_m3' (columns: date, p_MPa, id)");
-  EXPECT_EQ(error_of([&] { t.numbers("p_MPa"); }), "t.csv:3: column 'p_MPa': 'abc' is not a number");
+  EXPECT_EQ(test::input_error_of([&] { t.column("q_m3"); }), "t.csv: no column 'q_m3' (columns: date, p_MPa, id)");
+  EXPECT_EQ(test::input_error_of([&] { t.numbers("p_MPa"); }), "t.csv:3: column 'p_MPa': 'abc' is not a number");
 
-  EXPECT_EQ(error_of([] { parse(""); }), "t.csv: empty table: no header line");
-  EXPECT_EQ(error_of([] { parse("# only a comment\n\n"); }), "t.csv: empty table: no header line");
-  EXPECT_EQ(error_of([] { parse("a,b\n1,2\n3\n"); }), "t.csv:3: 1 fields, the header has 2");
-  EXPECT_EQ(error_of([] { parse("a,b\n1,2,\n"); }), "t.csv:2: 3 fields, the header has 2");
-  EXPECT_EQ(error_of([] { parse("a,b,a\n"); }), "t.csv:1: column 'a' appears twice in the header");
-  EXPECT_EQ(error_of([] { parse("a,b\n1,\"open\n2,3\n"); }), "t.csv:2: quoted field never closed");
-  EXPECT_EQ(error_of([] { parse("a,b\n\"x\"y,2\n"); }), "t.csv:2: text after a closing quote in field 1");
+  EXPECT_EQ(test::input_error_of([] { parse(""); }), "t.csv: empty table: no header line");
+  EXPECT_EQ(test::input_error_of([] { parse("# only a comment\n\n"); }), "t.csv: empty table: no header line");
+  EXPECT_EQ(test::input_error_of([] { parse("a,b\n1,2\n3\n"); }), "t.csv:3: 1 fields, the header has 2");
+  EXPECT_EQ(test::input_error_of([] { parse("a,b\n1,2,\n"); }), "t.csv:2: 3 fields, the header has 2");
+  EXPECT_EQ(test::input_error_of([] { parse("a,b,a\n"); }), "t.csv:1: column 'a' appears twice in the header");
+  EXPECT_EQ(test::input_error_of([] { parse("a,b\n1,\"open\n2,3\n"); }), "t.csv:2: quoted field never closed");
+  EXPECT_EQ(test::input_error_of([] { parse("a,b\n\"x\"y,2\n"); }), "t.csv:2: text after a closing quote in field 1");
 }
 
 TEST(CsvRead, FromFileAndPipe) {
@@ -115,7 +108,7 @@ TEST(CsvRead, FromFileAndPipe) {
   const CsvTable t = CsvTable::read((dir / "s.csv").string());
   EXPECT_EQ(t.name(), (dir / "s.csv").string());
   EXPECT_EQ(t.rows(), 2u);
-  EXPECT_EQ(error_of([&] { CsvTable::read((dir / "none.csv").string()); }),
+  EXPECT_EQ(test::input_error_of([&] { CsvTable::read((dir / "none.csv").string()); }),
             (dir / "none.csv").string() + ": cannot open: No such file or directory");
 
   // Through a real pipe on stdin (never seeks): a child process reads it back.

@@ -19,6 +19,7 @@
 
 #include <functional>
 
+#include "input_error.hpp"
 #include "sample_fields.hpp"
 #include "ugs/formats/fields.hpp"
 
@@ -65,14 +66,6 @@ std::vector<std::uint32_t> connectivity(const Mesh& m, ElementType t) {
   return r;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
 
 shared_ptr<XdmfDomain> read_xdmf(const fs::path& p) {
   shared_ptr<XdmfReader> reader = XdmfReader::New();
@@ -290,23 +283,23 @@ TEST(UGS_FIELDS_SUITE, ReaderErrorsNameFileFieldAndStep) {
   write_series(dir / "r.h5", m);
   const std::string h5 = (dir / "r.h5").string();
   FieldSeriesReader r(h5);
-  EXPECT_EQ(error_of([&] { r.node_field(0, "p"); }),
+  EXPECT_EQ(test::input_error_of([&] { r.node_field(0, "p"); }),
             h5 + ": no node field 'p' at step 1964-01-01 (node fields: dp, u)");
-  EXPECT_EQ(error_of([&] { r.cell_field(2, "dp"); }),
+  EXPECT_EQ(test::input_error_of([&] { r.cell_field(2, "dp"); }),
             h5 + ": no cell field 'dp' at step 2015-12-31T12:00:00 (cell fields: chi, stress)");
-  EXPECT_EQ(error_of([&] { r.step("1970-01-01"); }), h5 + ": no step 1970-01-01 (3 steps, 1964-01-01 to 2015-12-31T12:00:00)");
+  EXPECT_EQ(test::input_error_of([&] { r.step("1970-01-01"); }), h5 + ": no step 1970-01-01 (3 steps, 1964-01-01 to 2015-12-31T12:00:00)");
 
   const std::string missing = (dir / "missing.h5").string();
-  EXPECT_EQ(error_of([&] { FieldSeriesReader x(missing); }), missing + ": cannot open: No such file or directory");
+  EXPECT_EQ(test::input_error_of([&] { FieldSeriesReader x(missing); }), missing + ": cannot open: No such file or directory");
   test::spit(dir / "text.h5", "date,p_MPa\n");
-  EXPECT_EQ(error_of([&] { FieldSeriesReader x((dir / "text.h5").string()); }),
+  EXPECT_EQ(test::input_error_of([&] { FieldSeriesReader x((dir / "text.h5").string()); }),
             (dir / "text.h5").string() + ": not an HDF5 file");
 
   // A truncated file is refused with one line, whatever part is missing.
   const std::string full = test::slurp(dir / "r.h5");
   for (std::size_t keep : {full.size() / 2, full.size() - 100, std::size_t(600)}) {
     test::spit(dir / "cut.h5", full.substr(0, keep));
-    const std::string e = error_of([&] {
+    const std::string e = test::input_error_of([&] {
       FieldSeriesReader x((dir / "cut.h5").string());
       for (std::size_t k = 0; k < x.steps().size(); ++k) x.node_field(k, "u");
     });

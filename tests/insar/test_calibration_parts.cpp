@@ -5,10 +5,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include "input_error.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/case_file.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/insar/case_params.hpp"
+#include "ugs/insar/inputs.hpp"
 #include "ugs/insar/misfit.hpp"
 #include "ugs/insar/optimizer.hpp"
 #include "ugs/insar/solver_runs.hpp"
@@ -19,14 +21,6 @@ using namespace ugs::insar;
 namespace {
 const std::string kCase = std::string(UGS_SOURCE_DIR) + "/data-samples/po-plain/case.toml";
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 }  // namespace
 
 TEST(CaseParameters, ParseSpecs) {
@@ -41,11 +35,11 @@ TEST(CaseParameters, ParseSpecs) {
   const auto k = parse_parameter("material.aquifer_pool_c.K_m_per_s[0]=1e-8:1e-6:log");
   EXPECT_TRUE(k.log_scale);
   EXPECT_EQ(k.upper, 1e-6);
-  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R=6:2"); }).find("bounds reversed"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R=3:3"); }).find("not below"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R"); }).find("PATH=LOWER:UPPER"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_parameter("material.pool_c.c_R=a:3"); }).find("LOWER:UPPER"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_parameter("x=-1:3:log"); }).find("positive"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse_parameter("material.pool_c.c_R=6:2"); }).find("bounds reversed"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse_parameter("material.pool_c.c_R=3:3"); }).find("not below"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse_parameter("material.pool_c.c_R"); }).find("PATH=LOWER:UPPER"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse_parameter("material.pool_c.c_R=a:3"); }).find("LOWER:UPPER"), std::string::npos);
+  EXPECT_NE(test::input_error_of([] { parse_parameter("x=-1:3:log"); }).find("positive"), std::string::npos);
 }
 
 TEST(CaseParameters, ValuesAndMissingParameters) {
@@ -55,10 +49,10 @@ TEST(CaseParameters, ValuesAndMissingParameters) {
   EXPECT_EQ(c.value("initial_stress.k0"), 0.9);
   EXPECT_EQ(c.value("material.aquifer_pool_c.K_m_per_s[2]"), 2.04e-8);
   EXPECT_EQ(c.value("pool.\"Pool C\".reference_pressure_MPa"), 15.2055);
-  EXPECT_NE(error_of([&] { c.value("material.pool_x.c_R"); }).find("no [[material]] named 'pool_x'"), std::string::npos);
-  EXPECT_NE(error_of([&] { c.value("material.surrounding_rock.c_R"); }).find("has no key 'c_R'"), std::string::npos);
-  EXPECT_NE(error_of([&] { c.value("material.pool_c.name"); }).find("not a number"), std::string::npos);
-  EXPECT_NE(error_of([&] { c.value("nothing.here"); }).find("no parameter 'nothing.here'"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { c.value("material.pool_x.c_R"); }).find("no [[material]] named 'pool_x'"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { c.value("material.surrounding_rock.c_R"); }).find("has no key 'c_R'"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { c.value("material.pool_c.name"); }).find("not a number"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { c.value("nothing.here"); }).find("no parameter 'nothing.here'"), std::string::npos);
 }
 
 TEST(CaseParameters, RenderedCopyKeepsTextChangesValuesAndReadsBack) {
@@ -156,4 +150,43 @@ TEST(SolverCommand, ErrorsNameTheSettingInWordsNotAFlag) {
   EXPECT_EQ(message("run {case} {out} {mesh}", true), "");
   for (const auto& cmd : {"run {case}", "run {case} {out} {x}", "run {case} {out} {mesh}"})
     EXPECT_EQ(message(cmd, false).find("--"), std::string::npos) << cmd;
+}
+
+// The same for the parameters, the misfit, the CRSs, the polygons and the points (issue 23: library
+// code names no tool's flags). CalibrateCli.LibraryMessagesShowTheFlags and SampleCli.BadInputs
+// check the tools' lines.
+TEST(AnalysisMessages, NameTheSettingsInWordsNotFlags) {
+  const std::string bounds = test::input_error_of([] { parse_parameter("material.pool_c.c_R=6:2"); });
+  EXPECT_EQ(bounds, "parameter to calibrate material.pool_c.c_R=6:2: lower bound 6 is not below upper bound 2 (bounds reversed?)");
+  const std::string invalid = test::input_error_of([] { check_parameters(CaseTemplate(kCase), {parse_parameter("material.pool_c.c_R=0:6")}); });
+  EXPECT_EQ(invalid.rfind("parameter to calibrate material.pool_c.c_R: the case is not valid at material.pool_c.c_R = 0: ", 0), 0u)
+      << invalid;
+  const std::string twice = test::input_error_of([] {
+    check_parameters(CaseTemplate(kCase), {parse_parameter("material.pool_c.c_R=2:6"), parse_parameter("material.pool_c.c_R=3:5")});
+  });
+  EXPECT_EQ(twice, "parameter to calibrate material.pool_c.c_R: 'material.pool_c.c_R' is named twice");
+  const std::string window = test::input_error_of([] { combine_misfits({}, {}, 0.0); });
+  EXPECT_EQ(window, "no measured value of the PS selection falls in the misfit window within the results' dates");
+  const std::string crs = test::input_error_of([] { model_crs("EPSG:nothing", ""); });
+  EXPECT_EQ(crs, "model CRS: unknown coordinate reference system 'EPSG:nothing' (e.g. \"EPSG:32632\")");
+  const auto dir = test::temp_dir("analysis-messages");
+  test::spit(dir / "ps.csv", "pid,x,y,20150601\nA,680300,4950300,0\n");
+  test::spit(dir / "lonlat.csv", "pid,lon,lat,20150601\nA,11.3,44.7,0\n");
+  test::spit(dir / "none.geojson",
+             R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},)"
+             R"("features":[{"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon",)"
+             R"("coordinates":[[[680000,4950000],[680500,4950000],[680500,4950500],[680000,4950000]]]}}]})");
+  PsReadOptions ro;
+  ro.points_crs = "EPSG:nothing";
+  const std::string points_crs = test::input_error_of([&] { read_ps((dir / "ps.csv").string(), ro); });
+  EXPECT_EQ(points_crs, "points CRS: unknown coordinate reference system 'EPSG:nothing' (e.g. \"EPSG:32632\")");
+  const std::string lonlat = test::input_error_of([&] { read_ps((dir / "lonlat.csv").string(), PsReadOptions{}); });
+  EXPECT_NE(lonlat.find("the model CRS is needed to place them (give it, or a case file with crs)"), std::string::npos) << lonlat;
+  const std::string polygons = test::input_error_of([&] { read_polygons((dir / "none.geojson").string(), "", "name = 'B'"); });
+  EXPECT_EQ(polygons, (dir / "none.geojson").string() + ": has no polygon: none in the file, or none kept by the polygon filter");
+  for (const auto& m : {bounds, invalid, twice, window, crs, points_crs, lonlat, polygons}) {
+    EXPECT_FALSE(m.empty());
+    EXPECT_EQ(m.find("--"), std::string::npos) << m;
+  }
+  std::filesystem::remove_all(dir);
 }

@@ -118,7 +118,14 @@ TEST(SampleCli, BadInputs) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("none of the 1 points lies on the top surface"), std::string::npos) << r.err;
   r = test::run(test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --points " + d + "ps.csv -o " + d + "o.csv");
-  EXPECT_TRUE(one_line_error(r, "ugs-sample", "the model CRS is unknown")) << r.err;
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "but the model CRS (--crs) is unknown: give it, or a case with crs")) << r.err;
+  // The library names the settings in words (AnalysisMessages.NameTheSettingsInWordsNotFlags); the
+  // tool's line names the flags the user typed.
+  r = test::run(base + "--points " + d + "ps.csv --points-crs EPSG:nothing -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "error: --points-crs: unknown coordinate reference system 'EPSG:nothing'")) << r.err;
+  r = test::run(test::tool("ugs-sample") + " --results " + d + "run.h5 --mesh " + d + "model.msh --crs EPSG:nothing --points " + d +
+                "ps.csv -o " + d + "o.csv");
+  EXPECT_TRUE(one_line_error(r, "ugs-sample", "error: --crs: unknown coordinate reference system 'EPSG:nothing'")) << r.err;
   r = test::run(base + "--points " + d + "ps.csv --ascending 35 -o " + d + "o.csv");
   EXPECT_TRUE(one_line_error(r, "ugs-sample", "INCIDENCE/HEADING")) << r.err;
   r = test::run(base + "--points " + d + "ps.csv --reference 2030-01-01 -o " + d + "o.csv");
@@ -142,7 +149,8 @@ TEST(SampleCli, GeoJsonWithoutCrs) {
   test::spit(m.dir / "nocrs.geojson", geojson(680555.5, 4950400.0));
   auto r = test::run(base + "--points " + d + "nocrs.geojson -o " + d + "o.csv");
   EXPECT_TRUE(one_line_error(r, "ugs-sample", "nocrs.geojson: the layer has no coordinate reference system (expected a \"crs\" "
-                                              "member, e.g. EPSG:32632, or --points-crs); (680556, 4.9504e+06) is no longitude/latitude"))
+                                              "member, e.g. EPSG:32632, or the points CRS (--points-crs)); (680556, 4.9504e+06) is no "
+                                              "longitude/latitude"))
       << r.err;
   EXPECT_FALSE(fs::exists(m.dir / "o.csv"));
   r = test::run(base + "--points " + d + "nocrs.geojson --points-crs EPSG:32632 -o " + d + "o.csv");
@@ -168,13 +176,14 @@ TEST(CalibrateCli, BadInputs) {
   test::spit(dir / "up.csv", "pid,easting,northing,20150601,20150901\nA,4300000,2400000,0,1\n");
   const std::string base = test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d + "up.csv --solver-command 'true {case} {out}' -o " + d + "out ";
   auto r = test::run(base + "--param material.pool_c.c_R=6:2");
-  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "bounds reversed")) << r.err;
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --param material.pool_c.c_R=6:2: lower bound 6 is not below upper bound 2 "
+                                                 "(bounds reversed?)")) << r.err;
   r = test::run(base + "--param material.pool_x.c_R=2:6");
   EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "no [[material]] named 'pool_x'")) << r.err;
   r = test::run(base + "--param material.pool_c.E_MPa=2:6");
   EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "has no key 'E_MPa'")) << r.err;
   r = test::run(base + "--param material.pool_c.c_R=0:6");  // c_R = 0 is not a valid case
-  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "the case is not valid at")) << r.err;
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --param material.pool_c.c_R: the case is not valid at")) << r.err;
   r = test::run(base + "--param material.pool_c.c_R=2:6 --window 2020-01-01/2010-01-01");
   EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "start after end")) << r.err;
   test::spit(dir / "nocol.csv", "pid,northing,20150601\nA,2400000,0\n");
@@ -223,6 +232,42 @@ TEST(CalibrateCli, BadInputs) {
   }
   EXPECT_GE(failed, 1u);
   fs::remove_all(dir);
+}
+
+// Issue 23: the libraries name the settings in words (AnalysisMessages.NameTheSettingsInWordsNotFlags);
+// ugs-calibrate's lines and its stop reason name the flags the user typed.
+TEST(CalibrateCli, LibraryMessagesShowTheFlags) {
+  const Model m = write_model("calibrate-flags");
+  const std::string d = m.dir.string() + "/";
+  test::spit(m.dir / "case.toml", "crs = \"EPSG:32632\"\n[[material]]\nname = \"pool_c\"\nlaw = \"hypoplastic\"\nc_R = 3.0\n");
+  test::spit(m.dir / "up.csv", "pid,x,y,20150601,20150901\nA,680300,4950300,0,1.5\nB,680600,4950500,0,-2\n");
+  test::spit(m.dir / "trace.geojson",
+             R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},)"
+             R"("features":[{"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon",)"
+             R"("coordinates":[[[680000,4950000],[681000,4950000],[681000,4950800],[680000,4950000]]]}}]})");
+  const std::string base = test::tool("ugs-calibrate") + " --case " + d + "case.toml --mesh " + d + "model.msh --measured " + d +
+                           "up.csv --param material.pool_c.c_R=2:6 --scan 2 --max-evals 2 --solver-command 'cp " + d +
+                           "run.h5 {out} && test -s {case}' --cache-dir " + d + "cache ";
+  auto r = test::run(base + "--crs EPSG:nothing -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --crs: unknown coordinate reference system 'EPSG:nothing'")) << r.err;
+  r = test::run(base + "--points-crs EPSG:nothing -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --points-crs: unknown coordinate reference system 'EPSG:nothing'")) << r.err;
+  r = test::run(base + "--inside " + d + "trace.geojson --inside-where \"name = 'B'\" -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "trace.geojson: has no polygon: none in the file, or none kept by the polygon filter "
+                                                 "(--inside-where)")) << r.err;
+  r = test::run(base + "--window 2016-01-01/ -o " + d + "out");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: no measured value of the PS selection (--points, --inside) falls in the "
+                                                 "misfit window (--window) within the results' dates")) << r.err;
+  EXPECT_FALSE(fs::exists(m.dir / "out"));
+  // Two scan values and a budget of two: the stop reason names --max-evals on stderr, stdout and in
+  // parameters.csv's header.
+  r = test::run(base + "-o " + d + "out");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string stop = "evaluation budget (--max-evals) used by the scan";
+  EXPECT_NE(r.err.find("ugs-calibrate: warning: the optimizer stopped before converging: " + stop + "\n"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.rfind("best (scan, " + stop + "):\n", 0), 0u) << r.out;
+  EXPECT_NE(test::slurp(m.dir / "out" / "parameters.csv").find("scan; " + stop + "; RMS "), std::string::npos);
+  if (!HasFailure()) fs::remove_all(m.dir);
 }
 
 namespace {

@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
 #include "ugs/fem/voigt.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/mechanics/model.hpp"
@@ -30,13 +31,7 @@ using namespace ugs;
 namespace {
 
 MaterialSpec linear_rock(const std::string& name, double E = 10e9, double nu = 0.25) {
-  MaterialSpec m;
-  m.name = name;
-  m.where = "bt.toml:1";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = E;
-  m.nu_z = nu;
-  return m;
+  return test::linear_material(name, "bt.toml:1", E, nu);
 }
 
 // A box [0, L]^2 x [-H, 0] of n x n x nz cells, the surface elevation at its top.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "v1_oedometer.hpp"
 #include "ugs/fem/elasticity.hpp"
 #include "ugs/fem/hypoplastic.hpp"
 #include "ugs/fem/material_point.hpp"
@@ -102,9 +103,7 @@ TEST(Elasticity, RejectsNonPhysicalParameters) {
 
 // ---- V1 at one material point --------------------------------------------------------------------
 namespace {
-constexpr double a = 1.0044e-2, b = 1.1347;
-double cM(double s) { return a * std::pow(s, -b); }
-double virgin(double s0, double s1) { return a * (std::pow(s1, 1 - b) - std::pow(s0, 1 - b)) / (1 - b); }
+using test::v1::a, test::v1::b, test::v1::cM, test::v1::virgin;  // tests/support/v1_oedometer.hpp
 double sdep(double s0, double s1, double cR) { return virgin(s0, s1) / cR; }
 
 // Integrates the path with hypo_integrate in one call per leg and returns the cumulative strain

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "case_builders.hpp"
+#include "v1_oedometer.hpp"
 #include "ugs/fem/voigt.hpp"
 #include "ugs/mechanics/model.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
@@ -20,12 +22,7 @@ using namespace ugs;
 namespace {
 
 MaterialSpec ti_linear(const std::string& name) {
-  MaterialSpec m;
-  m.name = name;
-  m.where = "test";
-  m.law = MaterialLaw::Linear;
-  m.E_Pa = 2.0e9;
-  m.nu_z = 0.3;
+  MaterialSpec m = test::linear_material(name, "test", 2.0e9, 0.3);
   m.Eh_over_Ez = 3.0;
   m.nuh_over_nuz = 0.2;
   m.Gh_over_Gz = 1.7;
@@ -96,33 +93,7 @@ INSTANTIATE_TEST_SUITE_P(Solvers, V7, ::testing::Values(mech::LinearSolver::Mump
                          [](const auto& info) { return std::string(info.param == mech::LinearSolver::Mumps ? "mumps" : "cg_gamg"); });
 
 // ---- V1 ---------------------------------------------------------------------------------------
-namespace {
-constexpr double a = 1.0044e-2, b = 1.1347;
-double cM(double s) { return a * std::pow(s, -b); }
-double virgin(double s0, double s1) { return a * (std::pow(s1, 1 - b) - std::pow(s0, 1 - b)) / (1 - b); }
-
-// Closed-form strain magnitude of one layer along the path sigma0 + dS[k] for each rule.
-std::vector<double> closed_form(const std::string& rule, double s0, double cR, const std::vector<double>& dS) {
-  const double s1 = s0 + dS[1], s2 = s0 + dS[2], s3 = s0 + dS[3], s4 = s0 + dS[4];
-  std::vector<double> e(5, 0.0);
-  e[1] = virgin(s0, s1);
-  if (rule == "sigma-max") {
-    e[2] = e[1] + cM(s1) / cR * (s2 - s1);
-    e[3] = e[2] + cM(s1) / cR * (s1 - s2) + virgin(s1, s3);
-    e[4] = e[3] + cM(s3) / cR * (s4 - s3);
-  } else if (rule == "sigma-inversion") {
-    e[2] = e[1] + cM(s1) / cR * (s2 - s1);
-    e[3] = e[2] + cM(s2) / cR * (s1 - s2) + virgin(s1, s3);
-    e[4] = e[3] + cM(s3) / cR * (s4 - s3);
-  } else {
-    e[2] = e[1] + virgin(s1, s2) / cR;
-    e[3] = e[2] + virgin(s2, s1) / cR + virgin(s1, s3);
-    e[4] = e[3] + virgin(s3, s4) / cR;
-  }
-  return e;
-}
-}  // namespace
-
+// The closed form of each layer: test::v1::layer_strain (tests/support/v1_oedometer.hpp).
 class V1 : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(V1, OedometerPath) {
@@ -157,7 +128,7 @@ TEST_P(V1, OedometerPath) {
   std::vector<double> shortening(5, 0.0);
   for (int k = 0; k < nz; ++k) {
     const double zc = 0.5 * (spec.z[k] + spec.z[k + 1]), h = spec.z[k + 1] - spec.z[k];
-    const auto e = closed_form(rule, 0.0126 * (-zc), 3.0, dS);
+    const auto e = test::v1::layer_strain(rule, 0.0126 * (-zc), 3.0, dS);
     for (int t = 0; t < 5; ++t) shortening[t] += e[t] * h;
   }
   std::vector<std::uint32_t> top;

@@ -27,14 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Dir {
-  fs::path path;
-  explicit Dir(const std::string& tag) : path(test::temp_dir(tag)) {}
-  ~Dir() {
-    if (!std::getenv("UGS_TEST_KEEP")) fs::remove_all(path);
-  }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
+using Dir = test::TempDir;
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -37,6 +38,17 @@ inline std::filesystem::path temp_dir(const std::string& tag) {
   std::filesystem::create_directories(d);
   return d;
 }
+
+// A fresh temporary folder for one test's case files, removed when the test ends (kept when
+// UGS_TEST_KEEP is set, to look at); `dir / "case.toml"` is a file's path in it.
+struct TempDir {
+  std::filesystem::path path;
+  explicit TempDir(const std::string& tag) : path(temp_dir(tag)) {}
+  ~TempDir() {
+    if (!std::getenv("UGS_TEST_KEEP")) std::filesystem::remove_all(path);
+  }
+  std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
 
 inline RunResult run(const std::string& command) {
   static int counter = 0;

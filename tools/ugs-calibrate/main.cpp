@@ -98,6 +98,13 @@ int main(int argc, char** argv) {
   tool.name_setting("solver mesh", "--mesh");
   tool.name_setting("parameter to calibrate", "--param");
   tool.name_setting("scan values per parameter", "--scan");
+  tool.name_setting("evaluation budget", "--max-evals");
+  tool.name_setting("misfit window", "--window");
+  tool.name_setting("PS selection", "--points, --inside");
+  tool.name_setting("polygon filter", "--inside-where");
+  tool.name_setting("mesh of the top surface", "--mesh");
+  tool.name_setting("model CRS", "--crs");
+  tool.name_setting("points CRS", "--points-crs");
   return tool.run(argc, argv, [&] {
     // 1. Numeric options, then the parameters: every path must exist in the case, and both bounds
     // must give a valid case.
@@ -234,7 +241,8 @@ int main(int argc, char** argv) {
     oo.xtol = o.xtol;
     oo.max_evals = o.max_evals;
     const OptimizerResult best = optimize(ev, params, oo);
-    if (!best.converged) cli::warning("the optimizer stopped before converging: {}", best.stop_reason);
+    const std::string stop_reason = tool.with_flags(best.stop_reason);  // "evaluation budget (--max-evals) used"
+    if (!best.converged) cli::warning("the optimizer stopped before converging: {}", stop_reason);
     const Evaluation& be = ev.history()[best.best_index];
     if (!mesh_top)  // located on each results file's own surface: say which points it left out
       for (const auto& p : all_points)
@@ -256,7 +264,7 @@ int main(int argc, char** argv) {
       CsvWriter w(out.file("parameters.csv"), {"parameter", "paths", "best", "lower", "upper", "case_value", "scale"},
                   std::vector<std::string>{tool.command_line(),
                                            fmt::format("{}; {}; RMS {:.4f} mm at evaluation {} of {}", best.method,
-                                                       best.stop_reason, best.best_rms_mm, be.index, ev.history().size())});
+                                                       stop_reason, best.best_rms_mm, be.index, ev.history().size())});
       for (std::size_t i = 0; i < params.size(); ++i) {
         std::string paths;
         for (const auto& p : params[i].paths) paths += (paths.empty() ? "" : ";") + p;
@@ -310,7 +318,7 @@ int main(int argc, char** argv) {
     out.commit();
 
     // 7. The answer, on stdout.
-    std::printf("best (%s, %s):\n", best.method.c_str(), best.stop_reason.c_str());
+    std::printf("best (%s, %s):\n", best.method.c_str(), stop_reason.c_str());
     for (std::size_t i = 0; i < params.size(); ++i)
       std::printf("  %s = %s   [%g, %g]\n", params[i].name.c_str(), fmt_value(best.best_x[i]).c_str(), params[i].lower,
                   params[i].upper);

@@ -201,6 +201,11 @@ int main(int argc, char** argv) {
   tool.name_setting("solver command", "--solver-command");
   tool.name_setting("solver mesh", "--mesh");
   tool.name_setting("metric phase", "--phase");
+  tool.name_setting("misfit window", "--window");
+  tool.name_setting("PS selection", "--measured, --inside");
+  tool.name_setting("polygon filter", "--inside-where");
+  tool.name_setting("model CRS", "--crs");
+  tool.name_setting("points CRS", "--points-crs");
   return tool.run(argc, argv, [&] {
     o.mode = mode == "collect" ? Mode::collect : Mode::run;
     o.emit = emit == "make" ? Emit::make : emit == "slurm" ? Emit::slurm : Emit::none;

@@ -135,6 +135,8 @@ int main(int argc, char** argv) {
   std::string& output = tool.add_output("report", "Output folder");
   // The library names this setting in words; the messages show the flag.
   tool.name_setting("raster cell size", "--raster-cell");
+  tool.name_setting("mesh of the top surface", "--mesh");
+  tool.name_setting("model CRS", "--crs");
   return tool.run(argc, argv, [&] {
     // Numeric options: finite and in range, before anything is read.
     insar::check_option("--reference-pressure-MPa", o.reference_pressure_MPa, 0, std::numeric_limits<double>::max());

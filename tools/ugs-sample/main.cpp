@@ -59,6 +59,10 @@ int main(int argc, char** argv) {
   app.add_option("--ascending", o.ascending, "Ascending geometry INCIDENCE/HEADING in degrees -> column los_asc_mm");
   app.add_option("--descending", o.descending, "Descending geometry INCIDENCE/HEADING in degrees -> column los_desc_mm");
   std::string& output = tool.add_output("-", "Sample table (CSV)");
+  // The library names these settings in words; the messages show the flags.
+  tool.name_setting("mesh of the top surface", "--mesh");
+  tool.name_setting("model CRS", "--crs");
+  tool.name_setting("points CRS", "--points-crs");
   return tool.run(argc, argv, [&] {
     std::vector<LosGeometry> los;
     if (!o.ascending.empty()) los.push_back(parse_los_geometry("asc", o.ascending, "--ascending"));
@@ -75,10 +79,7 @@ int main(int argc, char** argv) {
     ro.points_crs = o.points_crs;
     ro.id_column = o.id_column;
     ro.require_series = o.at_ps_dates;
-    const PsData ps = read_ps(o.points, ro);
-    if (ro.model_crs.empty() && !ps.source_crs.empty())
-      throw InputError(o.points, fmt::format("points are in {}, but the model CRS is unknown: give --crs or --case",
-                                             crs_name(ps.source_crs)));
+    const PsData ps = read_ps_in_model(o.points, ro);
     cli::detail("{}: {} points ({} layout, {}{}), {} dates", ps.path, ps.points.size(), ps.layout,
                 crs_name(ps.source_crs), ps.reprojected ? " reprojected to " + crs_name(ro.model_crs) : "", ps.dates.size());
 

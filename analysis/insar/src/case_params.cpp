@@ -169,7 +169,7 @@ std::string toml_string(const std::string& s) {
 
 std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::vector<ParameterSpec>& params,
                                           const std::string& source) {
-  auto where = [&](const ParameterSpec& p) { return source.empty() ? "--param " + p.name : source; };
+  auto where = [&](const ParameterSpec& p) { return source.empty() ? "parameter to calibrate " + p.name : source; };
   std::set<std::string> seen;
   for (const auto& p : params)
     for (const auto& path : p.paths) {
@@ -219,7 +219,7 @@ std::string toml_float(double v) {
 }
 
 ParameterSpec parse_parameter(const std::string& text) {
-  const std::string where = "--param " + text;
+  const std::string where = "parameter to calibrate " + text;
   const auto eq = text.rfind('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError(where, "expected PATH=LOWER:UPPER (e.g. material.pool_c.c_R=2:6)");

@@ -14,7 +14,7 @@
 namespace ugs::insar {
 
 std::string model_crs(const std::string& crs, const std::string& case_path) {
-  if (!crs.empty()) return any_crs_wkt(crs, "--crs");
+  if (!crs.empty()) return any_crs_wkt(crs, "model CRS");
   if (case_path.empty()) return "";
   const TomlTable t = TomlTable::parse_file(case_path);
   if (auto c = t.string_opt("crs")) return any_crs_wkt(*c, t.where("crs"));
@@ -68,14 +68,14 @@ geo::PolygonSet read_polygons(const std::string& path, const std::string& model_
   const auto vec = geo::read_vector(path, model_crs, where);
   std::vector<geo::Polygon> polys;
   for (const auto& f : vec.features) polys.insert(polys.end(), f.polygons.begin(), f.polygons.end());
-  if (polys.empty()) throw InputError(path, "has no polygon (check --inside-where)");
+  if (polys.empty()) throw InputError(path, "has no polygon: none in the file, or none kept by the polygon filter");
   return geo::PolygonSet(polys);
 }
 
 PsData read_ps_in_model(const std::string& path, const PsReadOptions& options) {
   PsData d = read_ps(path, options);
   if (options.model_crs.empty() && !d.source_crs.empty())
-    throw InputError(path, fmt::format("points are in {}, but the model CRS is unknown: give --crs or a case with crs",
+    throw InputError(path, fmt::format("points are in {}, but the model CRS is unknown: give it, or a case with crs",
                                        crs_name(d.source_crs)));
   return d;
 }

@@ -59,8 +59,7 @@ Misfit combine_misfits(std::vector<SeriesMisfit> up, std::vector<SeriesMisfit> e
       m.n += s.n;
     }
   if (m.n == 0 || w <= 0)
-    throw InputError("", "no measured value falls in the misfit window at the chosen points (check --window, --points "
-                         "and the results' dates)");
+    throw InputError("", "no measured value of the PS selection falls in the misfit window within the results' dates");
   m.rms_mm = std::sqrt(ss / w);
   m.series = std::move(up);
   if (east_weight > 0) m.series.insert(m.series.end(), east.begin(), east.end());

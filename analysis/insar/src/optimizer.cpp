@@ -132,7 +132,7 @@ OptimizerResult optimize(Evaluator& ev, const std::vector<ParameterSpec>& params
     const auto br = brent_minimize([&](double s) { return f_unit({s}, "brent"); }, a, b, start[0], f0, o.xtol, budget);
     res.method = scan >= 2 ? "scan + Brent" : "Brent";
     res.converged = br.converged;
-    res.stop_reason = br.converged ? fmt::format("bracket below xtol {}", o.xtol) : "evaluation budget used (--max-evals)";
+    res.stop_reason = br.converged ? fmt::format("bracket below xtol {}", o.xtol) : "evaluation budget used";
   } else if (budget > 0) {
     nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
     opt.set_lower_bounds(std::vector<double>(n, 0.0));
@@ -172,12 +172,12 @@ OptimizerResult optimize(Evaluator& ev, const std::vector<ParameterSpec>& params
     res.method = scan >= 2 ? "scan + BOBYQA" : "BOBYQA";
     res.converged = r == nlopt::XTOL_REACHED || r == nlopt::FTOL_REACHED || r == nlopt::SUCCESS;
     res.stop_reason = r == nlopt::XTOL_REACHED   ? fmt::format("step below xtol {}", o.xtol)
-                      : r == nlopt::MAXEVAL_REACHED ? "evaluation budget used (--max-evals)"
+                      : r == nlopt::MAXEVAL_REACHED ? "evaluation budget used"
                       : r == nlopt::FTOL_REACHED    ? "misfit change below ftol"
                                                     : fmt::format("NLopt result {}", static_cast<int>(r));
   } else {
     res.method = "scan";
-    res.stop_reason = "evaluation budget used by the scan (--max-evals)";
+    res.stop_reason = "evaluation budget used by the scan";
   }
   // The answer is the best point evaluated.
   const auto& h = ev.history();

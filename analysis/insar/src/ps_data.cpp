@@ -78,7 +78,7 @@ void reproject(PsData& d, const PsReadOptions& o) {
   if (o.model_crs.empty()) {
     if (is_geographic(d.source_crs))
       throw InputError(d.path, fmt::format("points are in {} (longitude/latitude): the model CRS is needed to place them "
-                                           "(give --crs or a case file with crs)", crs_name(d.source_crs)));
+                                           "(give it, or a case file with crs)", crs_name(d.source_crs)));
     return;
   }
   if (d.source_crs.empty()) return;  // taken as being in the model CRS
@@ -142,7 +142,7 @@ PsData read_csv_points(const std::string& path, const PsReadOptions& o) {
     }
   }
   if (!o.points_crs.empty())
-    d.source_crs = any_crs_wkt(o.points_crs, "--points-crs");
+    d.source_crs = any_crs_wkt(o.points_crs, "points CRS");
   else if (!default_crs.empty())
     d.source_crs = any_crs_wkt(default_crs, d.path);
   if (o.require_series && d.dates.empty())
@@ -240,7 +240,7 @@ PsData read_ogr_points(const std::string& path, const PsReadOptions& o) {
     }
   }
   if (!o.points_crs.empty()) {
-    d.source_crs = any_crs_wkt(o.points_crs, "--points-crs");
+    d.source_crs = any_crs_wkt(o.points_crs, "points CRS");
     d.undeclared_crs = false;
   } else if (d.undeclared_crs && !d.points.empty()) {
     const bool geojson = driver.rfind("GeoJSON", 0) == 0;
@@ -252,7 +252,7 @@ PsData read_ogr_points(const std::string& path, const PsReadOptions& o) {
       // GDAL's WGS 84 would send projected coordinates off the globe; any other layer without a
       // CRS cannot be placed in the model's.
       throw InputError(path, fmt::format("the layer has no coordinate reference system (expected {}, e.g. EPSG:32632, or "
-                                         "--points-crs){}",
+                                         "the points CRS){}",
                                          geojson ? "a \"crs\" member" : driver == "ESRI Shapefile" ? "a .prj file beside it"
                                                                                                   : "a CRS in the layer",
                                          not_lonlat == d.points.end() || !geojson

@@ -128,7 +128,7 @@ TopSurface surface_from_results(const FieldSeriesReader& r) {
     return compact(x, tags, tris, r.path() + ": triangles");
   }
   const auto tet = checked_cells(r, ElementType::Tetrahedron);
-  if (tet.empty()) throw InputError(r.path(), "has neither triangles nor tetrahedra: give --mesh for the top surface");
+  if (tet.empty()) throw InputError(r.path(), "has neither triangles nor tetrahedra: give the mesh of the top surface");
   std::vector<std::array<std::uint32_t, 4>> tets(tet.size() / 4);
   for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = {tet[4 * i], tet[4 * i + 1], tet[4 * i + 2], tet[4 * i + 3]};
   TopSurface s = upward_boundary(x, tags, tets);

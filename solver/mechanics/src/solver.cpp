@@ -267,7 +267,7 @@ std::string MechanicsSolver::solver_description() const {
   if (name.rfind("cg-", 0) == 0 && krylov != KSPCG)
     why = s.has_hyp && krylov == KSPGMRES ? ", with GMRES: the hypo-plastic tangent is not symmetric"
                                           : fmt::format(", with {} (-ksp_type)", krylov);
-  return fmt::format("KSP {} + PC {} (--solver {}{}), {} process{}, {} partition", krylov, pt ? pt : "?", name, why,
+  return fmt::format("KSP {} + PC {} (linear solver {}{}), {} process{}, {} partition", krylov, pt ? pt : "?", name, why,
                      s.lm.size, s.lm.size > 1 ? "es" : "", s.opt.partition == PartitionMethod::PtScotch ? "PT-Scotch" : "RCB");
 }
 

@@ -105,11 +105,24 @@ std::string& Tool::add_output(const std::string& default_path, const std::string
   return output_;
 }
 
+namespace {
+// A line whose place is the setting itself ("setting: ...") or one value of it ("setting VALUE: ...",
+// the value without spaces, e.g. "parameter to calibrate material.pool_c.c_R=6:2: ...").
+bool names_the_place(const std::string& line, const std::string& setting) {
+  if (line.rfind(setting, 0) != 0 || line.size() < setting.size() + 2) return false;
+  if (line.compare(setting.size(), 2, ": ") == 0) return true;
+  if (line[setting.size()] != ' ') return false;
+  const auto colon = line.find(": ", setting.size() + 1);
+  return colon != std::string::npos && colon > setting.size() + 1 &&
+         line.find(' ', setting.size() + 1) == colon + 1;
+}
+}  // namespace
+
 std::string Tool::with_flags(std::string line) const {
   for (const auto& [setting, flag] : settings_) {
-    if (line.rfind(setting + ": ", 0) == 0) {
+    if (names_the_place(line, setting)) {
       line = flag + line.substr(setting.size());
-    } else if (const auto at = line.find(setting); at != std::string::npos) {
+    } else if (const auto at = line.find(setting); at != std::string::npos && line.find(flag) == std::string::npos) {
       line.insert(at + setting.size(), " (" + flag + ")");
     }
   }

@@ -24,7 +24,7 @@ struct ParameterSpec {
   bool log_scale = false;
 };
 
-// InputError(text) when malformed: no '=', bad numbers, lower >= upper (bounds reversed), log scale
+// InputError at "parameter to calibrate TEXT" when malformed: no '=', bad numbers, lower >= upper (bounds reversed), log scale
 // with a non-positive bound.
 ParameterSpec parse_parameter(const std::string& text);
 
@@ -51,7 +51,7 @@ private:
 // The checks every tool that varies case parameters makes before running anything (ugs-calibrate,
 // ugs-ensemble): each path is a number in the case, no path is named twice, and the case stays
 // valid (ugs::read_case_file) at each parameter's lower and upper value, rendered to a temporary
-// file that is always removed. Errors are InputErrors at `source` ("" = "--param <name>"), the
+// file that is always removed. Errors are InputErrors at `source` ("" = "parameter to calibrate <name>"), the
 // case's own message quoted. Returns warnings for the caller to print: a case value outside
 // [lower, upper].
 std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::vector<ParameterSpec>& params, const std::string& source = "");

@@ -6,7 +6,7 @@
 //     id column (pid, id, name), optional date columns (YYYYMMDD or YYYY-MM-DD) in mm;
 //   - any OGR point file (GeoJSON, GeoPackage, Shapefile, ...), in the layer's CRS. A layer without
 //     one (a GeoJSON without "crs" member, a Shapefile without .prj) is refused when the points
-//     must be placed in a model CRS, unless --points-crs says it; a GeoJSON without "crs" whose
+//     must be placed in a model CRS, unless the points CRS is given; a GeoJSON without "crs" whose
 //     coordinates are all longitude/latitude is WGS 84 (RFC 7946).
 // Points are reprojected to the model CRS through PROJ. Empty cells and "NaN" are missing values.
 #pragma once

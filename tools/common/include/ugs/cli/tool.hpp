@@ -29,9 +29,10 @@ public:
   std::string& add_output(const std::string& default_path, const std::string& what);
   std::string& output() { return output_; }
 
-  // Library code names the caller's settings in words ("end date"), never a tool's flags: an error
-  // line that starts with `setting: ` is printed as `flag: `, and other mentions of the setting get
-  // " (flag)" after them.
+  // Library code names the caller's settings in words ("end date"), never a tool's flags: a line
+  // whose place is the setting (`setting: ...`) or one value of it (`setting VALUE: ...`, VALUE
+  // without spaces) is printed with the flag in the setting's place (`flag: ...`, `flag VALUE: ...`),
+  // and the first other mention of the setting gets " (flag)" after it (unless the line names the flag).
   void name_setting(const std::string& setting, const std::string& flag) { settings_.emplace_back(setting, flag); }
   // `line` with the flags of the settings it names (also for notes and warnings).
   std::string with_flags(std::string line) const;
