@@ -147,11 +147,13 @@ TEST_P(LockedHistory, LockedFaultKeepsTheContinuousHistory) {
   for (auto s : res.state) slipping += s != 0;
   EXPECT_EQ(slipping, 0);
   // MUMPS keeps its factors across Newton iterations and steps while GMRES preconditioned by them
-  // converges fast (FactorReuse); the answers above are those of exact corrections all the same.
+  // converges fast (FactorReuse); the answers above agree all the same.
   const contact::ContactStats& st = fc.stats();
   std::printf("saddle-point solves %zu, linear iterations %zu, preconditioner setups (factorisations) %zu\n", st.solves,
               st.linear_iterations, st.preconditioner_setups);
-  if (GetParam() == contact::SaddleSolver::Mumps) EXPECT_LT(4 * st.preconditioner_setups, st.solves);
+  if (GetParam() == contact::SaddleSolver::Mumps) {
+    EXPECT_LT(4 * st.preconditioner_setups, st.solves);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Solvers, LockedHistory, ::testing::Values(contact::SaddleSolver::Mumps, contact::SaddleSolver::FieldSplit),
