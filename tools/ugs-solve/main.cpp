@@ -139,8 +139,10 @@ int main(int argc, char** argv) {
   tool.name_setting("linear solver", "--solver");
   tool.name_setting("restart state", "--restart");
   tool.name_setting("partition method", "--partition");
-  return tool.run(ours, argv, [&] {
+  int rank = 0;
+  const int code = tool.run(ours, argv, [&] {
     ugs::mech::PetscSession petsc(petsc_args);
+    rank = petsc.rank();
     // One voice: messages (and the error line) come from rank 0 unless -vv asks for all ranks.
     if (petsc.rank() != 0) {
       if (ugs::cli::verbosity() < 2) std::freopen("/dev/null", "w", stderr);
@@ -165,4 +167,9 @@ int main(int argc, char** argv) {
     ugs::cli::detail("time: reading {:.2f} s, setup {:.2f} s, solving {:.2f} s, output {:.2f} s", r.seconds_read,
                      r.seconds_setup, r.seconds_solve, r.seconds_output);
   });
+  // The exit status is rank 0's, which also prints the error line: that line is printed after
+  // PetscFinalize (the session ends as the error leaves the run), and another rank leaving with a
+  // non-zero status first made mpirun kill rank 0 before it printed (seen on a loaded machine:
+  // exit 1 without the line).
+  return rank == 0 ? code : 0;
 }
