@@ -2,6 +2,7 @@
 #include "ugs/meshing/fault_cut.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -794,17 +795,20 @@ private:
     return sorted_unique(std::move(out));
   }
   static std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> out) {
-    if (out.size() < (std::size_t{1} << 15)) {
+    if (out.size() < (std::size_t{1} << 12)) {
       std::sort(out.begin(), out.end());
       out.erase(std::unique(out.begin(), out.end()), out.end());
       return out;
     }
-    // Many (a coarse mesh's panel): a flag per element and one sweep instead of the sort.
-    std::vector<char> hit(*std::max_element(out.begin(), out.end()) + std::size_t{1}, 0);
-    for (auto i : out) hit[i] = 1;
+    // Many: a bit per element and one sweep of 64-bit words instead of the sort (the sort of a
+    // panel's few ten thousand was ~5 % of the thesis bench).
+    const std::uint32_t top = *std::max_element(out.begin(), out.end());
+    std::vector<std::uint64_t> hit(top / 64 + 1, 0);
+    for (auto i : out) hit[i / 64] |= std::uint64_t{1} << (i % 64);
     out.clear();
-    for (std::size_t i = 0; i < hit.size(); ++i)
-      if (hit[i]) out.push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t w = 0; w < hit.size(); ++w)
+      for (std::uint64_t bits = hit[w]; bits != 0; bits &= bits - 1)
+        out.push_back(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(bits))));
     return out;
   }
 
