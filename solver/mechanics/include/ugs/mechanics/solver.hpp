@@ -36,7 +36,7 @@ const char* linear_solver_name(LinearSolver s);
 // elements, where the elements held at their knee, and so the answer, are decided on the iterates
 // (docs/mechanics.md "Newton corrections of hypo-plastic models"). Other models use Eisenstat-Walker.
 enum class Corrections {
-  Bounded,          // Eisenstat-Walker, never leaving more than 50 x tolerance x r_0 (the default)
+  Bounded,          // Eisenstat-Walker, never leaving more than 50 x tolerance x r_0 (the default; exact with faults)
   Exact,            // to 0.5 x tolerance x r_0 every time (sessions 9-12; `-ugs_exact_newton`)
   EisenstatWalker,  // Eisenstat-Walker alone (`-ugs_inexact_newton`): faster, the answer moves with the solver
 };
