@@ -246,19 +246,16 @@ void MechanicsSolver::Impl::upload_linear() {
     // The rows hypo-plastic elements add to back to the elastic part (the others never change);
     // the hypo-plastic elements are added after this flush (INSERT and ADD cannot be mixed
     // between assemblies).
-    const PetscInt lo = static_cast<PetscInt>(3 * lm.node_begin);
-    if (!assembler.reset_row.empty() || assembler.rowptr.empty()) {
-      for (std::size_t r = 0; r < assembler.reset_row.size(); ++r) {
-        const PetscInt row = lo + assembler.reset_row[r];
-        UGS_PETSC(MatSetValues(A, 1, &row, assembler.reset_ptr[r + 1] - assembler.reset_ptr[r], assembler.reset_cols.data() + assembler.reset_ptr[r],
-                               assembler.reset_vals.data() + assembler.reset_ptr[r], INSERT_VALUES));
-      }
-    } else {
-      for (PetscInt i = 0; i < m; ++i) {
-        const PetscInt row = lo + i;
-        UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i],
-                               assembler.vals_lin.data() + assembler.rowptr[i], INSERT_VALUES));
-      }
+    // compact_reset_rows freed the full pattern (rowptr) and kept those rows; else (CHOLMOD) all rows.
+    const Assembler& as = assembler;
+    const bool compacted = as.rowptr.empty();
+    const std::vector<PetscInt>& ptr = compacted ? as.reset_ptr : as.rowptr;
+    const std::vector<PetscInt>& cols = compacted ? as.reset_cols : as.cols;
+    const std::vector<double>& vals = compacted ? as.reset_vals : as.vals_lin;
+    const std::size_t n = compacted ? as.reset_row.size() : static_cast<std::size_t>(m);
+    for (std::size_t r = 0; r < n; ++r) {
+      const PetscInt row = static_cast<PetscInt>(3 * lm.node_begin) + (compacted ? as.reset_row[r] : static_cast<PetscInt>(r));
+      UGS_PETSC(MatSetValues(A, 1, &row, ptr[r + 1] - ptr[r], cols.data() + ptr[r], vals.data() + ptr[r], INSERT_VALUES));
     }
     UGS_PETSC(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY));
     UGS_PETSC(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY));
