@@ -1,7 +1,6 @@
 #include "saddle_reuse.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "ugs/mechanics/reuse_rule.hpp"
 
@@ -34,9 +33,7 @@ bool FactorReuse::keep(bool allowed, const std::vector<double>& signature) const
 }
 
 void FactorReuse::record(int iterations, double reduction, bool fresh, const std::vector<double>& signature) {
-  // As the continuous solver counts (linear_solve.cpp): at least 0.3 decades, so that a solve that
-  // had little to reduce does not look expensive.
-  last_decades_ = std::max(std::log10(1.0 / std::max(reduction, 1e-300)), 0.3);
+  last_decades_ = mech::counted_decades(reduction);  // as the continuous solver counts
   last_ipd_ = iterations / last_decades_;
   if (fresh) {
     baseline_ipd_ = last_ipd_;
@@ -49,9 +46,6 @@ void FactorReuse::record(int iterations, double reduction, bool fresh, const std
   }
 }
 
-int FactorReuse::budget(double rtol) {
-  const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
-  return static_cast<int>(std::ceil(2 * mech::kFactorIterationsPerDecade * decades));
-}
+int FactorReuse::budget(double rtol) { return mech::factor_budget(rtol); }
 
 }  // namespace ugs::contact::detail

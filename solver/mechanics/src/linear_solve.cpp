@@ -10,6 +10,13 @@ bool keep_factorization(double baseline_ipd, double last_ipd, double last_decade
   return (last_ipd - baseline_ipd) * last_decades * horizon <= refactor_iterations;
 }
 
+double counted_decades(double reduction) { return std::max(std::log10(1.0 / std::max(reduction, 1e-300)), 0.3); }
+
+int factor_budget(double rtol) {
+  const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
+  return static_cast<int>(std::ceil(2 * kFactorIterationsPerDecade * decades));
+}
+
 bool keep_multigrid(double baseline_ipd, double last_ipd) {
   return last_ipd <= std::max(1.5 * baseline_ipd, baseline_ipd + 3.0);
 }
@@ -158,13 +165,13 @@ bool PreconditionerReuse::rate_ok(bool factored) const {
 }
 
 PetscInt PreconditionerReuse::budget(bool factored, double rtol) const {
+  if (factored) return factor_budget(rtol);
   const double decades = std::log10(1.0 / std::max(rtol, 1e-16));
-  return factored ? static_cast<PetscInt>(std::ceil(2 * kFactorIpd * decades))
-                  : static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
+  return static_cast<PetscInt>(std::max(100.0, 4 * baseline_ipd * decades));
 }
 
 void PreconditionerReuse::record(int iterations, double reduction, bool fresh) {
-  last_decades = std::max(std::log10(1.0 / std::max(reduction, 1e-300)), 0.3);
+  last_decades = counted_decades(reduction);
   last_ipd = iterations / last_decades;
   if (fresh) baseline_ipd = last_ipd, ++setups;
   valid = true;

@@ -121,7 +121,6 @@ struct Assembler {
 // Preconditioner-reuse policy: what the last setup and solves cost, in iteration counts only
 // (never measured time: the decision changes the numbers, reuse_rule.hpp, linear_solve.cpp).
 struct PreconditionerReuse {
-  static constexpr double kFactorIpd = kFactorIterationsPerDecade;  // (reuse_rule.hpp)
   bool valid = false;                  // a preconditioner has been set up
   double baseline_ipd = 0, last_ipd = 0, last_decades = 0;
   int setups = 0;

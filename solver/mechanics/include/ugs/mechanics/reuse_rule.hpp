@@ -28,6 +28,14 @@ inline constexpr double kFactorHorizon = 3.0;
 bool keep_factorization(double baseline_ipd, double last_ipd, double last_decades, double refactor_iterations,
                         double horizon);
 
+// The decades of residual reduction a solve is counted for, at least 0.3 (a solve that had little
+// to reduce must not look expensive).
+double counted_decades(double reduction);
+
+// The iterations a kept factorization gets for a solve to `rtol` (kFactorIterationsPerDecade per
+// decade, twice over).
+int factor_budget(double rtol);
+
 // A multigrid hierarchy is kept while its iterations per decade stay within 1.5 times (or 3 more
 // than) those right after its setup.
 bool keep_multigrid(double baseline_ipd, double last_ipd);
