@@ -813,4 +813,16 @@ TEST(SolveTool, HelpAndUsage) {
     EXPECT_NE(r.err.find(v == "-1" || v == "2000000" ? "not in range 0 to 1000000" : v), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+  // Under mpirun every process reads the command line, and only rank 0 speaks: one error line
+  // (each rank printed its own before), one --version.
+  r = test::run(test::solve_cmd(2) + " mesh.msh --case c.toml");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  std::size_t error_lines = 0;
+  std::istringstream lines(r.err);
+  for (std::string line; std::getline(lines, line);) error_lines += line.rfind("ugs-solve: error: ", 0) == 0;
+  EXPECT_EQ(error_lines, 1u) << r.err;
+  EXPECT_NE(r.err.find("--pressure is required"), std::string::npos) << r.err;
+  r = test::run(test::solve_cmd(2) + " --version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
 }

@@ -22,6 +22,9 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
 
+#include <mpi.h>
+#include <unistd.h>
+
 namespace {
 
 // The options as given; typed() turns them into the driver's settings.
@@ -139,13 +142,24 @@ int main(int argc, char** argv) {
   tool.name_setting("linear solver", "--solver");
   tool.name_setting("restart state", "--restart");
   tool.name_setting("partition method", "--partition");
+  // One voice: messages (and the error line) come from rank 0 unless -vv asks for all ranks. MPI
+  // starts before the command line is read (PETSc then leaves it running at its end), so that the
+  // other ranks are silent from the start and an error in the options is one line under mpirun too.
+  MPI_Init(nullptr, nullptr);
   int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const int own_stderr = rank != 0 ? dup(fileno(stderr)) : -1;
+  if (rank != 0) {  // (stdout too: --help and --version once; results are written by rank 0)
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+  }
   const int code = tool.run(ours, argv, [&] {
     ugs::mech::PetscSession petsc(petsc_args);
-    rank = petsc.rank();
-    // One voice: messages (and the error line) come from rank 0 unless -vv asks for all ranks.
-    if (petsc.rank() != 0) {
-      if (ugs::cli::verbosity() < 2) std::freopen("/dev/null", "w", stderr);
+    if (rank != 0) {
+      if (ugs::cli::verbosity() >= 2) {  // every rank's errors
+        std::fflush(stderr);
+        dup2(own_stderr, fileno(stderr));
+      }
       ugs::cli::set_verbosity(-1);
     }
     RunSettings s = typed(a, tool.output());
@@ -171,5 +185,6 @@ int main(int argc, char** argv) {
   // PetscFinalize (the session ends as the error leaves the run), and another rank leaving with a
   // non-zero status first made mpirun kill rank 0 before it printed (seen on a loaded machine:
   // exit 1 without the line).
+  MPI_Finalize();
   return rank == 0 ? code : 0;
 }
