@@ -15,7 +15,8 @@
 #    (both -ksp_view printed and compared), same mesh and physics, in the same run. Target: ugs-solve
 #    at least 2x faster with no more memory.
 # 2. history: the hypo-plastic 1950-2033 history (pressure fields every month, 1,008 dates) at the
-#    same scale on 2 processes, stepped on its turning points. Target: under 30 min, under 8 GB.
+#    same scale on 2 processes, stepped on its turning points. Target (issue 23): under 10 min, under 4 GB
+#    (both processes together; issue 8 asked 30 min and 8 GB).
 #    HISTORY_SAMPLE=1 and HISTORY_STEPS=N time monthly steps instead and project an every-date run.
 #
 # The model (bench/solve/make_thesis_case.cpp): the layered box of the thesis — 42 x 30 km,
@@ -120,7 +121,7 @@ n_prod = sum(1 for d in dates[1:] if d <= "1960-01-01")
 n_stor = len(dates) - 1 - n_prod
 t = n_prod * sum(prod) / len(prod) + n_stor * sum(stor) / len(stor)
 print(f"history: production {sum(prod) / len(prod):.1f} s/step x {n_prod}, storage {sum(stor) / len(stor):.1f} s/step x {n_stor}: "
-      f"projected 1950-2033 {t:.0f} s (target < 1800 s)")
+      f"projected 1950-2033 {t:.0f} s (target < 600 s)")
 print(f"metric: ugs-solve.history_sample.projected_wall {t:.0f} s")
 PY
   elif [[ -n ${HISTORY_STEPS:-} ]]; then
@@ -165,8 +166,8 @@ PY
       tee "$his/history.log" | grep -E "turning-point steps|[0-9]+ steps:|time:|RSS"
     t=$(secs "$t0" "$(now)")
     kill "$sampler" 2>/dev/null || true
-    echo "ugs-solve (history): wall $t s (target < 1800 s)"
-    echo "ugs-solve (history): peak resident memory of the 2 processes together $(awk '{printf "%.2f", $1 / 1048576}' "$rss_log") GB (target < 8 GB)"
+    echo "ugs-solve (history): wall $t s (target < 600 s)"
+    echo "ugs-solve (history): peak resident memory of the 2 processes together $(awk '{printf "%.2f", $1 / 1048576}' "$rss_log") GB (target < 4 GB)"
     echo "metric: ugs-solve.history.wall $t s"
     awk '{ printf "metric: ugs-solve.history.rss_total %.2f GB\n", $1 / 1048576 }' "$rss_log"
   fi
