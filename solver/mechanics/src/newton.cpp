@@ -74,7 +74,8 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
     // apart on tests/fault_mechanics/test_locked_history. So no correction may leave more than
     // kCorrectionBound x tolerance x r_0: the iterates, the held set and the answer are then those
     // of an exact Newton within the tolerance, whatever the linear solver, its preconditioner
-    // reuse, the predictor or a coupling (a locked fault) (docs/mechanics.md "Newton corrections").
+    // reuse or the predictor (docs/mechanics.md "Newton corrections"); a coupling (faults) asks for
+    // exact corrections by default (above), -ugs_inexact_newton aside.
     const double target_rtol = 0.5 * opt.tolerance * r0 / rk;
     double rtol = std::max(target_rtol, eta);
     if (corrections == Corrections::Exact) rtol = target_rtol;
