@@ -279,7 +279,7 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
     for (Mat* a : {&J_, &Jp_})
       if (*a) CHK(MatDestroy(a));
     if (iterative) {
-      // The preconditioner's displacement block: a frozen copy of K_gamma (saddle_reuse.hpp).
+      // The preconditioner's displacement block: a copy of K_gamma refreshed at every solve (saddle_reuse.hpp).
       if (!Pg_) CHK(MatDuplicate(Kg_, MAT_COPY_VALUES, &Pg_));
       MatNullSpace nsp = nullptr;
       CHK(MatGetNearNullSpace(A, &nsp));
