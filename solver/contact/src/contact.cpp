@@ -307,7 +307,6 @@ void FaultContact::begin_step() {
   s.gc_step = s.gc;
   s.st_step = s.st_c;
   s.dp_start = s.dp_c;
-  s.linear.begin_step();
 }
 
 void FaultContact::begin_substep(double fraction) {

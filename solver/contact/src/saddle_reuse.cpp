@@ -12,12 +12,10 @@ double SaddleReuse::per_decade(int iterations, double decades) {
 }
 
 bool SaddleReuse::keep(bool allowed, const std::vector<double>& signature) const {
-  return allowed && built_ && solves_in_step_ == 0 && last_step_linear_ && signature == signature_ &&
-         mech::keep_multigrid(baseline_ipd_, last_ipd_);
+  return allowed && built_ && signature == signature_ && mech::keep_multigrid(baseline_ipd_, last_ipd_);
 }
 
 void SaddleReuse::record(int iterations, double decades, bool fresh, const std::vector<double>& signature) {
-  ++solves_in_step_;
   last_ipd_ = per_decade(iterations, decades);
   if (fresh) {
     baseline_ipd_ = last_ipd_;

@@ -2,19 +2,21 @@
 // the Schur approximation) and when it builds a new one (SaddlePointSolver, docs/fault-mechanics.md);
 // below, FactorReuse: when MUMPS keeps its factorisation.
 //
-// A kept hierarchy runs on a frozen copy of the augmented displacement block, so that GAMG's
-// Chebyshev bounds stay those of the matrix it was built from (the mechanics' own rule, solver_impl.hpp
-// separate_p); the Krylov method sees the current operator. It is rebuilt when
+// A kept hierarchy keeps its coarse operators (GAMG's Galerkin products P^T K P, the expensive part
+// of a setup: GAMG already keeps its aggregates and prolongators from the first setup on) and the
+// selfp Schur approximation; its finest level runs on the current augmented displacement block
+// (smoother, residual), so that only the coarse correction lags behind the hypo-plastic tangent.
+// It is rebuilt when
 //   - the active set changed: the constraint rows (stick, the normal of slipping pairs) are the
 //     augmented springs of K + gamma C W B, so their pattern is the active set's signature;
 //   - the rate degraded: iterations per decade of residual reduction beyond those right after the
 //     setup (mech::keep_multigrid: 1.5 times, or 3 more);
-//   - a kept one failed (the solve is repeated after a setup);
-//   - the load step is nonlinear: a hierarchy is kept only for the first solve of a step, and only
-//     when the step before took a single solve (a linear step: storage months on the unloading/
-//     reloading branch with an unchanged active set). Within a nonlinear step (virgin loading:
-//     the tangent changes at every Newton iteration) a frozen hierarchy went stale: kept there, the
-//     coarsened history's production months took 30 % more linear iterations (session 12).
+//   - a kept one failed (the solve is repeated after a setup).
+// Across Newton iterations and load steps alike. Until 2026-11-27 every solve of a nonlinear step
+// (virgin loading: the tangent changes at every Newton iteration) set up, because a hierarchy frozen
+// with its fine level had cost 30 % more linear iterations there (session 12); with the fine level
+// current the coarsened history's production months take the same iterations with 1 setup instead
+// of 26 (docs/fault-mechanics.md, "Production months").
 // Counts only, never measured time: the decision changes the numbers (reuse_rule.hpp).
 #pragma once
 #include <cstddef>
@@ -33,11 +35,6 @@ public:
   void record(int iterations, double decades, bool fresh, const std::vector<double>& signature);
   // Forget the preconditioner (after a failure).
   void drop() { built_ = false; }
-  // A new load step begins: the one before was linear if it took at most one solve.
-  void begin_step() {
-    last_step_linear_ = solves_in_step_ <= 1;
-    solves_in_step_ = 0;
-  }
 
   std::size_t setups() const { return setups_; }
 
@@ -47,8 +44,6 @@ private:
   double baseline_ipd_ = 0, last_ipd_ = 0;
   std::vector<double> signature_;
   std::size_t setups_ = 0;
-  int solves_in_step_ = 0;
-  bool last_step_linear_ = true;
 };
 
 // When MUMPS keeps its factorisation of the saddle-point matrix. A kept factorisation

@@ -251,8 +251,25 @@ void SaddlePointSolver::reset() {
     if (*a) CHK(MatDestroy(a));
   A_seen_ = nullptr;
   configured_ = false;
+  blocks_kept_ = false;  // KSPReset destroyed the blocks' solvers
   reuse_.drop();
   factors_.drop();
+}
+
+void SaddlePointSolver::keep_blocks(bool keep) {
+  if (keep == blocks_kept_) return;
+  PC pc;
+  CHK(KSPGetPC(ksp_, &pc));
+  PetscInt n = 0;
+  KSP* sub = nullptr;
+  CHK(PCFieldSplitGetSubKSP(pc, &n, &sub));
+  for (PetscInt i = 0; i < n; ++i) {
+    PC block;
+    CHK(KSPGetPC(sub[i], &block));
+    CHK(PCSetReusePreconditioner(block, keep ? PETSC_TRUE : PETSC_FALSE));
+  }
+  CHK(PetscFree(sub));
+  blocks_kept_ = keep;
 }
 
 PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason) {
@@ -262,7 +279,7 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
     for (Mat* a : {&J_, &Jp_})
       if (*a) CHK(MatDestroy(a));
     if (iterative) {
-      // The preconditioner's displacement block: a frozen copy of K_gamma (saddle_reuse.hpp).
+      // The preconditioner's displacement block: a copy of K_gamma refreshed at every solve (saddle_reuse.hpp).
       if (!Pg_) CHK(MatDuplicate(Kg_, MAT_COPY_VALUES, &Pg_));
       MatNullSpace nsp = nullptr;
       CHK(MatGetNearNullSpace(A, &nsp));
@@ -311,11 +328,19 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
     throw ComputeError("MPI_Allreduce failed in the saddle-point solver");
   bool keep = keep_all != 0;
   for (;;) {
-    if (iterative && !keep) {
-      // The frozen block becomes the current one; the nest's state tells the field split to set up.
+    if (iterative) {
+      // The preconditioner's block becomes the current one. Kept: the multigrid's finest level
+      // (smoother, residual) runs on it, its coarse levels and the Schur approximation stay
+      // (saddle_reuse.hpp); the blocks' solvers must not set up on its new state. Not kept: the
+      // nest's state tells the field split to set up.
       CHK(MatCopy(Kg_, Pg_, SAME_NONZERO_PATTERN));
-      CHK(MatAssemblyBegin(Jp_, MAT_FINAL_ASSEMBLY));
-      CHK(MatAssemblyEnd(Jp_, MAT_FINAL_ASSEMBLY));
+      if (keep) {
+        keep_blocks(true);
+      } else {
+        keep_blocks(false);
+        CHK(MatAssemblyBegin(Jp_, MAT_FINAL_ASSEMBLY));
+        CHK(MatAssemblyEnd(Jp_, MAT_FINAL_ASSEMBLY));
+      }
     }
     CHK(KSPSetOperators(ksp_, op, iterative ? Jp_ : op));
     if (!configured_) CHK(KSPSetFromOptions(ksp_));

@@ -4,8 +4,8 @@
 //                active set is unchanged and GMRES preconditioned by them converges fast (saddle_reuse.hpp), or
 //   field split  FGMRES with a Schur-complement field split: the displacement block augmented with
 //                the constraint rows (K + gamma C W B, augmented Lagrangian) under algebraic
-//                multigrid, the multiplier block by selfp; the preconditioner (on a frozen copy
-//                of the augmented block) is kept while the active set is unchanged and the rate
+//                multigrid, the multiplier block by selfp; the preconditioner's coarse levels and
+//                Schur approximation are kept while the active set is unchanged and the rate
 //                stays close to that of a fresh setup (saddle_reuse.hpp).
 #pragma once
 #include <array>
@@ -42,8 +42,6 @@ public:
 
   SaddleSolver kind() const { return kind_; }
   const char* name() const { return kind_ == SaddleSolver::Mumps ? "MUMPS" : "field split"; }
-  // A new load step begins (the preconditioner-reuse rule keeps a hierarchy across linear steps only).
-  void begin_step() { reuse_.begin_step(); }
 
 private:
   // The active set's signature: the augmentation weight gamma / A_q of every constraint row (stick,
@@ -56,6 +54,9 @@ private:
   // After a failure: drops the factorisation or hierarchy and the block operator, so that the next
   // solve sets everything up afresh.
   void reset();
+  // Field split: whether the setups of its blocks' preconditioners (GAMG, the Schur block's) are
+  // kept when their operators change (PCSetReusePreconditioner on each block).
+  void keep_blocks(bool keep);
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   int n_owned_ = 0;
@@ -63,10 +64,13 @@ private:
   const ContactOptions* opt_ = nullptr;
   Vec rhs_ = nullptr, sol_ = nullptr, wr_ = nullptr;
   Mat WB_ = nullptr, G_ = nullptr, Kg_ = nullptr, J_ = nullptr, Jaij_ = nullptr;
-  Mat Pg_ = nullptr, Jp_ = nullptr;  // the preconditioner's frozen copy of K_gamma and its block matrix
+  // The preconditioner's copy of K_gamma and its block matrix: updated at every solve, so that the
+  // nest's state tells the field split when to set up (a new active set, a degraded rate).
+  Mat Pg_ = nullptr, Jp_ = nullptr;
   Mat A_seen_ = nullptr;
   KSP ksp_ = nullptr;
   bool configured_ = false;  // KSPSetFromOptions done since the last reset
+  bool blocks_kept_ = false;  // keep_blocks(true) in force
   PatternSum kg_sum_;  // K + G into K_gamma's values in place
   SaddleReuse reuse_;  // when the field split keeps its preconditioner
   FactorReuse factors_;  // when MUMPS keeps its factorisation
