@@ -782,11 +782,12 @@ TEST(SolveTool, SubStepsSayWhy) {
   Dir d("solve-substeps");
   ASSERT_EQ(test::run(test::make_case() + " column " + d.path.string()).exit_code, 0);
   // Steps 2 (virgin loading) and 4 (the reload past sigma_max) take 4 Newton iterations in one
-  // piece (5 for step 4 before the hypo-plastic corrections were solved to the Newton target).
+  // piece (5 for step 4 before the hypo-plastic corrections were solved to the Newton target); step 2
+  // needed 8 sub-steps of at most 3 iterations while the matrix skipped tangent changes under 0.5 %.
   variant(d, "[solver]\n", "[solver]\nmax_newton_iterations = 3\n", "split.toml");
   const auto r = test::run(test::solve_cmd() + " " + column_args(d, "split.toml") + " -o " + d / "out.h5" + " -v");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const std::string step : {"step 2/5 (2001-01-01): split into 8 sub-steps", "step 4/5 (2003-01-01): split into 5 sub-steps"})
+  for (const std::string step : {"step 2/5 (2001-01-01): split into 4 sub-steps", "step 4/5 (2003-01-01): split into 5 sub-steps"})
     EXPECT_NE(r.err.find("ugs-solve: " + step + ": Newton did not converge in 3 iterations (relative residuals 1.00e+00, "),
               std::string::npos)
         << step << "\n" << r.err;

@@ -110,10 +110,8 @@ struct Assembler {
   std::vector<fem::Mat6> assembled_Dt;
   std::vector<std::int8_t> assembled_phase;  // branch in the matrix
   bool have_lin = false, mat_created = false, mat_changed = false;
-  // Incremental assembly: an element's stiffness is updated when its tangent
-  // moved by more than kTangentChange (relative, largest entry); a full assembly every
-  // kFullAssemblyEvery updates.
-  static constexpr double kTangentChange = 5e-3;
+  // Incremental assembly: the elements whose tangent changed add the difference; a full
+  // assembly every kFullAssemblyEvery updates keeps the sums fresh.
   static constexpr int kFullAssemblyEvery = 100;
   int updates_since_full = 0;
 };
@@ -384,7 +382,6 @@ struct MechanicsSolver::Impl {
 
   const fem::Mat6& tangent(std::size_t h) const { return hyp.trial[h].Dt; }
 
-  static double relative_change(const fem::Mat6& a, const fem::Mat6& b);
 
   // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
   void scatter_dummy_diag(int c);
