@@ -199,6 +199,12 @@ void MechanicsSolver::Impl::upload_linear() {
       const PetscInt lo = 3 * static_cast<PetscInt>(lm.node_begin), hi = lo + m;
       for (PetscInt i = 0; i < m; ++i)
         for (PetscInt k = assembler.rowptr[i]; k < assembler.rowptr[i + 1]; ++k) ++(assembler.cols[k] >= lo && assembler.cols[k] < hi ? dnnz[i] : onnz[i]);
+      // Every row is set once, whole and sorted (MAT_SORTED_FULL): on several processes hypre then
+      // writes the values straight into its matrix instead of first into a row buffer of its own
+      // (~16 B per nonzero more at the peak, mhypre.c), and PETSc's MatAssemblyEnd gives the
+      // assembled matrix no new 30-entry row buffer per row (~0.4 kB a row, kept as long as the
+      // matrix) for the values set later, which hypre writes in place anyway.
+      UGS_PETSC(MatSetOption(A, MAT_SORTED_FULL, PETSC_TRUE));
       UGS_PETSC(MatHYPRESetPreallocation(A, 0, dnnz.data(), 0, onnz.data()));
       for (PetscInt i = 0; i < m; ++i) {
         const PetscInt row = lo + i;
@@ -209,10 +215,6 @@ void MechanicsSolver::Impl::upload_linear() {
       // again (the peak of the process); a hypo-plastic model keeps the rows it resets.
       if (has_hyp) compact_reset_rows();
       else release_pattern();
-      // Every row was set whole: without this, PETSc's MatAssemblyEnd gives hypre's IJ matrix a new
-      // row buffer of 30 entries per row (~0.5 kB a row, kept as long as the matrix) for values set
-      // later, which hypre writes in place into the assembled matrix anyway (mhypre.c).
-      UGS_PETSC(MatSetOption(A, MAT_SORTED_FULL, PETSC_TRUE));
       UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
       UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     } else {
