@@ -196,15 +196,22 @@ void MechanicsSolver::Impl::upload_linear() {
       const PetscInt lo = 3 * static_cast<PetscInt>(lm.node_begin), hi = lo + m;
       for (PetscInt i = 0; i < m; ++i)
         for (PetscInt k = assembler.rowptr[i]; k < assembler.rowptr[i + 1]; ++k) ++(assembler.cols[k] >= lo && assembler.cols[k] < hi ? dnnz[i] : onnz[i]);
+      // Every row is set once, whole and sorted (MAT_SORTED_FULL): on several processes hypre then
+      // writes the values straight into its matrix instead of first into a row buffer of its own
+      // (~16 B per nonzero more at the peak, mhypre.c), and PETSc's MatAssemblyEnd gives the
+      // assembled matrix no new 30-entry row buffer per row (~0.4 kB a row, kept as long as the
+      // matrix) for the values set later, which hypre writes in place anyway.
+      UGS_PETSC(MatSetOption(A, MAT_SORTED_FULL, PETSC_TRUE));
       UGS_PETSC(MatHYPRESetPreallocation(A, 0, dnnz.data(), 0, onnz.data()));
       for (PetscInt i = 0; i < m; ++i) {
         const PetscInt row = lo + i;
         UGS_PETSC(MatSetValues(A, 1, &row, assembler.rowptr[i + 1] - assembler.rowptr[i], assembler.cols.data() + assembler.rowptr[i], assembler.vals_lin.data() + assembler.rowptr[i],
                                INSERT_VALUES));
       }
-      // hypre holds the values now, and a linear matrix never changes: the arrays go before
-      // hypre's assembly, which needs as much again (the peak of the process).
-      release_pattern();
+      // hypre holds the values now: the arrays go before hypre's assembly, which needs as much
+      // again (the peak of the process); a hypo-plastic model keeps the rows it resets.
+      if (has_hyp) compact_reset_rows();
+      else release_pattern();
       UGS_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
       UGS_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     } else {
@@ -238,7 +245,7 @@ void MechanicsSolver::Impl::upload_linear() {
     UGS_PETSC(VecDestroy(&xyz));
     UGS_PETSC(KSPSetOperators(ksp, A, A));
     assembler.mat_created = true;
-    if (has_hyp && opt.linear != LinearSolver::Cholmod) compact_reset_rows();
+    if (has_hyp && opt.linear != LinearSolver::Cholmod && !assembler.rowptr.empty()) compact_reset_rows();
   } else {
     // The rows hypo-plastic elements add to back to the elastic part (the others never change);
     // the hypo-plastic elements are added after this flush (INSERT and ADD cannot be mixed
@@ -254,8 +261,13 @@ void MechanicsSolver::Impl::upload_linear() {
       const PetscInt row = static_cast<PetscInt>(3 * lm.node_begin) + (compacted ? as.reset_row[r] : static_cast<PetscInt>(r));
       UGS_PETSC(MatSetValues(A, 1, &row, ptr[r + 1] - ptr[r], cols.data() + ptr[r], vals.data() + ptr[r], INSERT_VALUES));
     }
-    UGS_PETSC(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY));
-    UGS_PETSC(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY));
+    // (MATHYPRE has no flush; its assembly of an assembled matrix only ends the insertion, the
+    // values are already in place.)
+    PetscBool is_hypre = PETSC_FALSE;
+    UGS_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATHYPRE, &is_hypre));
+    const MatAssemblyType flush = is_hypre ? MAT_FINAL_ASSEMBLY : MAT_FLUSH_ASSEMBLY;
+    UGS_PETSC(MatAssemblyBegin(A, flush));
+    UGS_PETSC(MatAssemblyEnd(A, flush));
   }
 }
 

@@ -1,6 +1,7 @@
 // The linear solves of the Newton iterations: Krylov method, preconditioner, its reuse (solver_impl.hpp,
 // docs/mechanics.md).
 #include "solver_impl.hpp"
+#include "ugs/mechanics/petsc_session.hpp"
 #include "ugs/mechanics/reuse_rule.hpp"
 
 namespace ugs::mech {
@@ -91,7 +92,12 @@ void MechanicsSolver::Impl::setup_ksp() {
 }
 
 bool MechanicsSolver::Impl::hypre_owns_matrix() const {
-  if (has_hyp || coupling) return false;  // (the fault coupling reads A's rows as AIJ)
+  // The fault coupling reads A's rows as AIJ; GAMG and CHOLMOD (hypo-plastic) precondition with a
+  // copy P of A or of its symmetric form.
+  if (coupling || separate_p()) return false;
+  // -ugs_aij_matrix (after "--"): a PETSc AIJ matrix that PCHYPRE converts at each setup (before
+  // session 14 for hypo-plastic models; kept to compare the two and for the tests).
+  if (petsc_option_given("-ugs_aij_matrix")) return false;
   PC pc;
   UGS_PETSC(KSPGetPC(ksp, &pc));
   PetscBool is_hypre = PETSC_FALSE;

@@ -251,6 +251,12 @@ std::size_t MechanicsSolver::global_cells() const { return impl_->lm.n_global_ce
 std::size_t MechanicsSolver::local_nodes() const { return impl_->lm.n_owned; }
 std::size_t MechanicsSolver::local_cells() const { return impl_->lm.n_cells(); }
 
+std::string MechanicsSolver::matrix_type() const {
+  MatType t = nullptr;
+  if (impl_->A) UGS_PETSC(MatGetType(impl_->A, &t));
+  return t ? t : "";
+}
+
 std::string MechanicsSolver::solver_description() const {
   const Impl& s = *impl_;
   KSPType kt;

@@ -386,9 +386,11 @@ struct MechanicsSolver::Impl {
   // Hypo-plastic elements contribute to the scale of prescribed rows with their initial tangent.
   void scatter_dummy_diag(int c);
 
-  // A linear problem preconditioned by hypre (whatever -pc_type chose): A is built as hypre's
-  // matrix. (With hypo-plastic elements A changes while a preconditioner is kept, and BoomerAMG's
-  // fine level must keep the matrix it was set up with: PCHYPRE's converted copy.)
+  // Preconditioned by hypre (whatever -pc_type chose), A is built as hypre's matrix: PCHYPRE uses it
+  // as it is instead of converting a PETSc copy at every setup (one matrix in memory, not two). With
+  // hypo-plastic elements A changes in place while a hierarchy is kept: BoomerAMG's fine level is
+  // A, so its smoother and residual see the current tangent and only the coarse levels are the
+  // kept ones (the Krylov method runs on A either way).
   bool hypre_owns_matrix() const;
 
   // A from the elastic part: created with it (first call), or its rows reset to it.

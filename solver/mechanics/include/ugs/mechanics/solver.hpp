@@ -133,6 +133,9 @@ public:
   std::size_t local_nodes() const;    // owned by this rank
   std::size_t local_cells() const;    // kept by this rank (with shared ones)
   std::string solver_description() const;
+  // PETSc's type of the tangent matrix ("hypre" when BoomerAMG preconditions it: built as hypre's own
+  // matrix, unless `-ugs_aij_matrix` keeps a PETSc matrix that PCHYPRE converts); "" before the first step.
+  std::string matrix_type() const;
 
 private:
   struct Impl;
