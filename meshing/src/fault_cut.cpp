@@ -17,6 +17,7 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
 #include "cut_band_improvement.hpp"
+#include "node_grid.hpp"
 #include "vec3.hpp"
 
 namespace ugs {
@@ -241,6 +242,7 @@ public:
     tets_at_.build(X_.size(), T_);
     tris_at_.build(X_.size(), F_);
     for (const auto& t : T_) raise_reach(t);
+    grid_.build(X_, reach_);
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
@@ -383,40 +385,58 @@ public:
   // for each bound, a node within tol + |m| D of its inside: that end is such a node, and D is at
   // most the reach of each of its nodes. So only the tetrahedra around nodes passing that test
   // (with a margin for rounding) are examined, in increasing order as a scan of all would meet them.
+  // The nodes are tested cell by cell of grid_, skipping the cells whose box (widened by their
+  // largest reach, and by a margin for rounding) cannot hold a node passing the test, and the nodes
+  // the grid does not place (added or snapped since it was built) one by one: the same nodes pass.
   std::vector<std::array<std::uint32_t, 2>> plane_edges(const CutPanel& p) const {
-    std::vector<double> g(X_.size());
+    auto g = [&](std::uint32_t i) { return dot(p.n, X_[i]) - p.c; };
     std::vector<std::uint32_t> near;
     const double nn = norm(p.n);
     std::vector<double> mm;
     for (const auto& b : p.bounds) mm.push_back(norm(b.m));
-    for (std::size_t i = 0; i < X_.size(); ++i) {
-      g[i] = dot(p.n, X_[i]) - p.c;
+    auto test = [&](std::uint32_t i) {
       const double r = 1.001 * reach_[i] + 2 * tol_;
-      bool in = std::abs(g[i]) <= nn * r;
+      bool in = std::abs(g(i)) <= nn * r;
       for (std::size_t k = 0; in && k < p.bounds.size(); ++k) in = dot(p.bounds[k].m, X_[i]) - p.bounds[k].d <= tol_ + mm[k] * r;
-      if (in) near.push_back(static_cast<std::uint32_t>(i));
-    }
+      if (in) near.push_back(i);
+    };
+    const double round = 1e-8 * (nn * grid_.extent() + std::abs(p.c));
+    grid_.visit(
+        [&](const Point3& lo, const Point3& hi, double reach) {
+          const double r = 1.001 * reach + 2 * tol_;
+          if (NodeGrid::min_over(p.n, p.c, lo, hi) > nn * r + round || NodeGrid::max_over(p.n, p.c, lo, hi) < -nn * r - round)
+            return false;
+          for (std::size_t k = 0; k < p.bounds.size(); ++k)
+            if (NodeGrid::min_over(p.bounds[k].m, p.bounds[k].d, lo, hi) >
+                tol_ + mm[k] * r + 1e-8 * (mm[k] * grid_.extent() + std::abs(p.bounds[k].d)))
+              return false;
+          return true;
+        },
+        test);
+    for (auto v : snapped_nodes_) test(v);  // moved since the grid was built (tested twice at most: duplicates are harmless)
+    for (std::size_t i = grid_.nodes(); i < X_.size(); ++i) test(static_cast<std::uint32_t>(i));
     std::vector<std::array<std::uint32_t, 2>> out;
     std::unordered_set<std::uint64_t> seen;
     std::vector<Point3> section;
     for (auto ti : elements_at(tets_at_, near)) {
       const auto& t = T_[ti];
-      double lo = g[t[0]], hi = lo;
+      const double gt[4] = {g(t[0]), g(t[1]), g(t[2]), g(t[3])};
+      double lo = gt[0], hi = lo;
       for (int k = 1; k < 4; ++k) {
-        lo = std::min(lo, g[t[k]]);
-        hi = std::max(hi, g[t[k]]);
+        lo = std::min(lo, gt[k]);
+        hi = std::max(hi, gt[k]);
       }
       if (!(lo < -tol_ && hi > tol_)) continue;
       section.clear();
       for (int k = 0; k < 4; ++k)
-        if (std::abs(g[t[k]]) <= tol_) section.push_back(X_[t[k]]);
+        if (std::abs(gt[k]) <= tol_) section.push_back(X_[t[k]]);
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
-          if (crosses(g[t[i]], g[t[j]])) section.push_back(crossing(t[i], t[j], g[t[i]], g[t[j]]));
+          if (crosses(gt[i], gt[j])) section.push_back(crossing(t[i], t[j], gt[i], gt[j]));
       if (separated(section, p.bounds, nullptr)) continue;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
-          if (crosses(g[t[i]], g[t[j]]) && seen.insert(edge_key(t[i], t[j])).second) out.push_back({t[i], t[j]});
+          if (crosses(gt[i], gt[j]) && seen.insert(edge_key(t[i], t[j])).second) out.push_back({t[i], t[j]});
     }
     return out;
   }
@@ -854,7 +874,10 @@ private:
         d2 = std::max(d2, dot(e, e));
       }
     const double d = std::sqrt(d2);
-    for (auto v : t) reach_[v] = std::max(reach_[v], d);
+    for (auto v : t) {
+      reach_[v] = std::max(reach_[v], d);
+      grid_.raise(v, reach_[v]);
+    }
   }
 
   void apply(const EdgeMap& marked) {
@@ -926,6 +949,7 @@ private:
   std::vector<std::uint32_t> Fb_;
   Incidence tets_at_, tris_at_;        // per node: the tetrahedra / triangles holding it
   std::vector<double> reach_;          // per node: at least the diameter of each tetrahedron holding it
+  NodeGrid grid_;                      // the input nodes, for plane_edges (built after reach_)
   std::vector<const CutPanel*> done_;  // the panels cut so far
   std::size_t snapped_ = 0;
   std::vector<std::uint32_t> snapped_nodes_;  // every node snap_onto moved, in order
