@@ -329,9 +329,18 @@ private:
           if (!has(node_faults_[v], s_.tri_group[i])) node_faults_[v].push_back(s_.tri_group[i]);
         }
     for (auto v : on_fault_) std::sort(node_faults_[v].begin(), node_faults_[v].end());  // the others are empty
-    for (auto t : band_) {
+    quiet_since_.resize(band_.size(), kNever);
+    for (std::size_t k = 0; k < band_.size(); ++k) {
+      const auto t = band_[k];
       if (tet_dead_[t] || !in_band(s_.tets[t])) continue;
       const auto& e = s_.tets[t];
+      // A tetrahedron that gave no candidate gives none again until a collapse changes one of its
+      // nodes (its lengths, its nodes' faults and the tetrahedron itself depend on nothing else).
+      const std::uint64_t quiet = quiet_since_[k];
+      if (quiet != kNever && changed_at_[e[0]] <= quiet && changed_at_[e[1]] <= quiet && changed_at_[e[2]] <= quiet &&
+          changed_at_[e[3]] <= quiet)
+        continue;
+      const std::size_t before = cands.size();
       // Short: against the longest edge of the tetrahedron, except between two nodes of a fault,
       // where it is against the input tetrahedron's shortest edge: the cut points of successive
       // thin sub-layers are as far apart as the sub-layers and stay, so the fault's interface
@@ -350,6 +359,7 @@ private:
               want[a] = want[b] = 1;
             }
         }
+      quiet_since_[k] = cands.size() == before ? changes_ : kNever;
     }
     if (cands.empty()) return 0;
     std::sort(cands.begin(), cands.end());
@@ -806,6 +816,7 @@ private:
   SurfaceCache collapse_surfaces_;         // stamped with changes_
   std::vector<std::uint64_t> changed_at_;  // per node: changes_ after the last collapse around it
   std::uint64_t changes_ = 0;              // successful collapses so far
+  std::vector<std::uint64_t> quiet_since_;  // per band_ entry: changes_ when it last gave no collapse candidate, kNever else
   std::unordered_map<std::uint64_t, std::uint64_t> failed_at_;  // (b << 32 | a) -> changes_ when its collapse failed
   ElementSoup s_;
   std::size_t first_new_;
