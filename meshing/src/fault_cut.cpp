@@ -218,14 +218,14 @@ public:
     Tp_.reserve(ntets);
     for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
       const auto& blk = mesh.blocks[b];
-      if (blk.type == ElementType::Tetrahedron)
-        for (std::size_t i = 0; i < blk.size(); ++i) {
-          const auto e = blk.element(i);
+      if (blk.type == ElementType::Tetrahedron) {  // from the node array (element(i) looked up the type per element)
+        const std::uint32_t* e = blk.nodes.data();
+        for (std::size_t i = 0; i < blk.size(); ++i, e += 4) {
           T_.push_back({e[0], e[1], e[2], e[3]});
-          Tb_.push_back(static_cast<std::uint32_t>(b));
           Tp_.push_back(static_cast<std::uint32_t>(Tp_.size()));
         }
-      else if (blk.type == ElementType::Triangle)
+        Tb_.insert(Tb_.end(), blk.size(), static_cast<std::uint32_t>(b));
+      } else if (blk.type == ElementType::Triangle)
         for (std::size_t i = 0; i < blk.size(); ++i) {
           const auto e = blk.element(i);
           F_.push_back({e[0], e[1], e[2]});

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "ugs/formats/mesh.hpp"
@@ -19,22 +20,23 @@ public:
   // that the queries widen their tests by. About 32 nodes per cell.
   void build(const std::vector<Point3>& X, const std::vector<double>& reach) {
     const std::size_t n = X.size();
-    Point3 lo{0, 0, 0}, hi{0, 0, 0};
-    for (std::size_t i = 0; i < n; ++i)
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    Point3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+    for (const auto& x : X)
       for (int k = 0; k < 3; ++k) {
-        lo[k] = i == 0 ? X[i][k] : std::min(lo[k], X[i][k]);
-        hi[k] = i == 0 ? X[i][k] : std::max(hi[k], X[i][k]);
+        lo[k] = std::min(lo[k], x[k]);
+        hi[k] = std::max(hi[k], x[k]);
       }
     const int per_axis = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(n) / 32.0)));
+    Point3 scale{0, 0, 0};  // cells per unit length (which cell a node goes to only matters for speed)
+    for (int k = 0; k < 3; ++k) scale[k] = hi[k] > lo[k] ? per_axis / (hi[k] - lo[k]) : 0.0;
     cell_of_.resize(n);
     std::vector<std::uint32_t> count(static_cast<std::size_t>(per_axis) * per_axis * per_axis, 0);
     for (std::size_t i = 0; i < n; ++i) {
       std::size_t c = 0;
       for (int k = 0; k < 3; ++k) {
-        const double span = hi[k] - lo[k];
-        int b = span > 0 ? static_cast<int>((X[i][k] - lo[k]) / span * per_axis) : 0;
-        b = std::clamp(b, 0, per_axis - 1);
-        c = c * static_cast<std::size_t>(per_axis) + static_cast<std::size_t>(b);
+        const int b = std::min(per_axis - 1, static_cast<int>((X[i][k] - lo[k]) * scale[k]));
+        c = c * static_cast<std::size_t>(per_axis) + static_cast<std::size_t>(std::max(0, b));
       }
       cell_of_[i] = static_cast<std::uint32_t>(c);
       ++count[c];
@@ -44,20 +46,20 @@ public:
     nodes_.resize(n);
     std::fill(count.begin(), count.end(), 0);
     for (std::size_t i = 0; i < n; ++i) nodes_[start_[cell_of_[i]] + count[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
-    lo_.assign(count.size(), Point3{0, 0, 0});
-    hi_.assign(count.size(), Point3{0, 0, 0});
+    lo_.assign(count.size(), Point3{inf, inf, inf});
+    hi_.assign(count.size(), Point3{-inf, -inf, -inf});
     reach_.assign(count.size(), 0.0);
-    for (std::size_t c = 0; c < count.size(); ++c)
-      for (std::uint32_t j = start_[c]; j < start_[c + 1]; ++j) {
-        const Point3& x = X[nodes_[j]];
-        for (int k = 0; k < 3; ++k) {
-          lo_[c][k] = j == start_[c] ? x[k] : std::min(lo_[c][k], x[k]);
-          hi_[c][k] = j == start_[c] ? x[k] : std::max(hi_[c][k], x[k]);
-        }
-        reach_[c] = std::max(reach_[c], reach[nodes_[j]]);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t c = cell_of_[i];
+      for (int k = 0; k < 3; ++k) {
+        lo_[c][k] = std::min(lo_[c][k], X[i][k]);
+        hi_[c][k] = std::max(hi_[c][k], X[i][k]);
       }
+      reach_[c] = std::max(reach_[c], reach[i]);
+    }
     extent_ = 0;
-    for (int k = 0; k < 3; ++k) extent_ = std::max({extent_, std::abs(lo[k]), std::abs(hi[k])});
+    for (int k = 0; k < 3; ++k)
+      if (n > 0) extent_ = std::max({extent_, std::abs(lo[k]), std::abs(hi[k])});
   }
 
   // The nodes binned (those numbered below); a node added later is not in any cell.
