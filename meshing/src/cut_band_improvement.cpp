@@ -136,6 +136,7 @@ public:
     moved_at_.assign(s_.nodes.size(), 0);
     smooth_failed_.assign(s_.nodes.size(), kNever);
     smooth_hint_.assign(s_.nodes.size(), 0);
+    nb_slot_.assign(s_.nodes.size(), 0);
     tet_q_.assign(s_.tets.size(), {0.0, kNever});
     if (smooth_below_ > 0)
       for (int pass = 0; pass < 6; ++pass) {
@@ -165,20 +166,21 @@ private:
     return t[0] >= first_new_ || t[1] >= first_new_ || t[2] >= first_new_ || t[3] >= first_new_;
   }
 
-  // The band's tetrahedra, and the tetrahedra around the band's nodes (one scan of the mesh: the
-  // passes then visit only these). A tetrahedron never enters the band (a collapse replaces a cut
-  // node by a neighbour), and the nodes the passes ask about are the band's.
+  // The band's tetrahedra, and the tetrahedra around the band's nodes (from the caller's
+  // incidences: the passes then visit only these). A tetrahedron never enters the band (a collapse
+  // replaces a cut node by a neighbour), and the nodes the passes ask about are the band's.
   void find_band() {
-    std::vector<char> in_w(s_.nodes.size(), 0);
-    for (std::size_t t = 0; t < s_.tets.size(); ++t)
-      if (in_band(s_.tets[t])) {
-        band_.push_back(static_cast<std::uint32_t>(t));
-        for (auto v : s_.tets[t]) in_w[v] = 1;
-      }
+    for (std::size_t v = first_new_; v < s_.nodes.size(); ++v) s_.tets_at(static_cast<std::uint32_t>(v), band_);
+    std::sort(band_.begin(), band_.end());
+    band_.erase(std::unique(band_.begin(), band_.end()), band_.end());
     around_.assign(s_.nodes.size(), {});
-    for (std::size_t t = 0; t < s_.tets.size(); ++t)
+    std::vector<char> listed(s_.nodes.size(), 0);
+    for (auto t : band_)
       for (auto v : s_.tets[t])
-        if (in_w[v]) around_[v].push_back(static_cast<std::uint32_t>(t));
+        if (!listed[v]) {
+          listed[v] = 1;
+          s_.tets_at(v, around_[v]);
+        }
   }
 
   // Incidences of the nodes flagged in `want` (alive elements only), in increasing order.
@@ -676,13 +678,7 @@ private:
       else if (norm(cross(line->d, l.d)) > (l.exact || line->exact ? 1e-9 : kParallel)) return false;  // a corner
     }
     Point3 mean{0, 0, 0};
-    auto& nb = nb_scratch_;  // sorted, unique: the mean adds them in increasing order
-    nb.clear();
-    for (auto t : tets_of_[v])
-      for (auto w : s_.tets[t])
-        if (w != v) nb.push_back(w);
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    const auto& nb = neighbours_of(v);  // sorted, unique: the mean adds them in increasing order
     for (auto w : nb) mean = add(mean, scaled(X(w), 1.0 / static_cast<double>(nb.size())));
     Point3 d = sub(mean, X(v));
     if (!line) {
@@ -740,6 +736,22 @@ private:
     return false;
   }
 
+  // v's neighbours (the other nodes of its tetrahedra), sorted: the smoothing changes no incidence,
+  // so they are listed once per node over its passes.
+  const std::vector<std::uint32_t>& neighbours_of(std::uint32_t v) {
+    std::uint32_t& slot = nb_slot_[v];
+    if (slot == 0) {
+      auto& nb = nb_lists_.emplace_back();
+      for (auto t : tets_of_[v])
+        for (auto w : s_.tets[t])
+          if (w != v) nb.push_back(w);
+      std::sort(nb.begin(), nb.end());
+      nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+      slot = static_cast<std::uint32_t>(nb_lists_.size());
+    }
+    return nb_lists_[slot - 1];
+  }
+
   void compact() {
     std::vector<std::uint32_t> to(s_.nodes.size());
     std::size_t n = 0;
@@ -795,7 +807,8 @@ private:
   std::uint64_t moves_ = 0;
   std::vector<std::uint64_t> smooth_failed_;   // per node: moves_ when its last smoothing step failed, kNever none
   std::vector<std::uint32_t> smooth_hint_;      // per node: the index in its tets_of_ list of the tetrahedron that failed its last trial step
-  std::vector<std::uint32_t> nb_scratch_;
+  std::vector<std::uint32_t> nb_slot_;                 // per node: 1 + its entry in nb_lists_, 0 none
+  std::deque<std::vector<std::uint32_t>> nb_lists_;    // neighbours_of's lists
   static constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
   // The band's tetrahedra during the smoothing (which changes no incidence), in band_'s order, with
   // what the pass' scan needs in one place (it read five arrays of millions at random per tetrahedron).

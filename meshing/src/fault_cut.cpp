@@ -617,7 +617,8 @@ public:
   // Steps 5 and 6: collapse of short edges and smoothing in the band the cut made
   // (cut_band_improvement.hpp).
   BandImprovement improve(std::size_t first_new, double ratio, double smooth_below_deg, double bound_deg) {
-    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), *parent_, bound_deg},
+    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), *parent_, bound_deg,
+                             [this](std::uint32_t v, std::vector<std::uint32_t>& out) { tets_at_.append(v, out); }},
                             first_new, ratio, smooth_below_deg, tol_);
   }
 
