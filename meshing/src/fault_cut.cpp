@@ -518,20 +518,14 @@ public:
   // Faces lying in panel p with their centroid inside it, sorted node triples -> oriented face.
   void collect(const CutPanel& p, std::map<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>>& faces,
                std::map<std::array<std::uint32_t, 3>, int>& uses) const {
-    const std::size_t n = X_.size();
-    std::vector<char> on(n);
-    std::vector<std::uint32_t> on_list;
-    for (std::size_t i = 0; i < n; ++i) {
-      on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
-      if (on[i]) on_list.push_back(static_cast<std::uint32_t>(i));
-    }
+    auto on = [&](std::uint32_t i) { return std::abs(dot(p.n, X_[i]) - p.c) <= tol_; };
     static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (auto i : elements_at(tets_at_, on_list)) {
+    for (auto i : elements_at(tets_at_, nodes_on_plane(p.n, p.c))) {
       const auto& t = T_[i];
-      if (on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]] < 3) continue;
+      if (on(t[0]) + on(t[1]) + on(t[2]) + on(t[3]) < 3) continue;
       for (const auto& f : face_of) {
         std::array<std::uint32_t, 3> tri{t[f[0]], t[f[1]], t[f[2]]};
-        if (!on[tri[0]] || !on[tri[1]] || !on[tri[2]]) continue;
+        if (!on(tri[0]) || !on(tri[1]) || !on(tri[2])) continue;
         Point3 cen{0, 0, 0};
         for (auto v : tri)
           for (int k = 0; k < 3; ++k) cen[k] += X_[v][k] / 3;
@@ -669,13 +663,18 @@ public:
       b.type = ElementType::Triangle;
       mesh_.blocks.push_back(std::move(b));
     }
+    // Each block's size first, then plain appends (an insert per element was a third of this).
+    std::vector<std::size_t> size(mesh_.blocks.size(), 0);
+    for (auto b : Tb_) size[b] += 4;
+    for (auto b : Fb_) size[b] += 3;
+    for (std::size_t b = 0; b < size.size(); ++b) mesh_.blocks[b].nodes.reserve(size[b]);
     for (std::size_t i = 0; i < T_.size(); ++i) {
-      auto& b = mesh_.blocks[Tb_[i]];
-      b.nodes.insert(b.nodes.end(), T_[i].begin(), T_[i].end());
+      auto& nodes = mesh_.blocks[Tb_[i]].nodes;
+      for (auto v : T_[i]) nodes.push_back(v);
     }
     for (std::size_t i = 0; i < F_.size(); ++i) {
-      auto& b = mesh_.blocks[Fb_[i]];
-      b.nodes.insert(b.nodes.end(), F_[i].begin(), F_[i].end());
+      auto& nodes = mesh_.blocks[Fb_[i]].nodes;
+      for (auto v : F_[i]) nodes.push_back(v);
     }
     (void)nb;
     std::uint64_t tag = 0;
@@ -841,9 +840,7 @@ private:
     auto& o = on_plane_;
     if (o.panel != &p) {
       o.panel = &p;
-      o.nodes.clear();
-      for (std::size_t i = 0; i < X_.size(); ++i)
-        if (on(static_cast<std::uint32_t>(i))) o.nodes.push_back(static_cast<std::uint32_t>(i));
+      o.nodes = nodes_on_plane(p.n, p.c);
     } else {
       std::vector<std::uint32_t> test = std::move(o.nodes);
       test.insert(test.end(), snapped_nodes_.begin() + static_cast<std::ptrdiff_t>(o.snapped), snapped_nodes_.end());
@@ -857,6 +854,29 @@ private:
     o.scanned = X_.size();
     o.snapped = snapped_nodes_.size();
     return o.nodes;
+  }
+
+  // The nodes within tol_ of the plane n . x = c, in increasing order: grid_'s cells whose box
+  // (widened by a margin for rounding) reaches within tol_ of it, and the nodes added or snapped
+  // since it was built one by one (the same nodes as a scan of all).
+  std::vector<std::uint32_t> nodes_on_plane(const Point3& n, double c) const {
+    auto on = [&](std::uint32_t i) { return std::abs(dot(n, X_[i]) - c) <= tol_; };
+    const double round = 1e-8 * (norm(n) * grid_.extent() + std::abs(c));
+    std::vector<std::uint32_t> out;
+    grid_.visit(
+        [&](const Point3& lo, const Point3& hi, double) {
+          return !(NodeGrid::min_over(n, c, lo, hi) > tol_ + round || NodeGrid::max_over(n, c, lo, hi) < -tol_ - round);
+        },
+        [&](std::uint32_t i) {
+          if (on(i)) out.push_back(i);
+        });
+    for (auto v : snapped_nodes_)
+      if (v < grid_.nodes() && on(v)) out.push_back(v);
+    for (std::size_t i = grid_.nodes(); i < X_.size(); ++i)
+      if (on(static_cast<std::uint32_t>(i))) out.push_back(static_cast<std::uint32_t>(i));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
   }
 
   // The elements holding one of `nodes`, in increasing order.
