@@ -102,7 +102,8 @@ private:
       size(n, '\n');
       if (binary_) {
         raw(m_.node_tags.data(), n * sizeof(std::uint64_t));
-        for (const auto& x : m_.nodes) raw(x.data(), 3 * sizeof(double));
+        static_assert(sizeof(Point3) == 3 * sizeof(double));  // the coordinates are one array: one append
+        raw(m_.nodes.data(), n * sizeof(Point3));
       } else {
         for (auto t : m_.node_tags) text("{}\n", t);
         for (const auto& x : m_.nodes) text("{} {} {}\n", x[0], x[1], x[2]);
@@ -135,10 +136,18 @@ private:
       size(b.size(), '\n');
       const int npe = b.npe();
       if (binary_) {
-        rec.resize(1 + npe);
-        for (std::size_t i = 0; i < b.size(); ++i) {
-          rec[0] = b.tags[i];
-          for (int k = 0; k < npe; ++k) rec[1 + k] = m_.node_tags[b.nodes[i * npe + k]];
+        // Records written straight into the buffer, a few MB at a time (an append per element
+        // was most of the writing time of millions of tetrahedra).
+        const std::size_t words = 1 + static_cast<std::size_t>(npe);
+        const std::size_t per_chunk = std::max<std::size_t>(1, (std::size_t{1} << 22) / (words * sizeof(std::uint64_t)));
+        for (std::size_t i0 = 0; i0 < b.size(); i0 += per_chunk) {
+          const std::size_t i1 = std::min(b.size(), i0 + per_chunk);
+          rec.resize(words * (i1 - i0));
+          std::uint64_t* r = rec.data();
+          for (std::size_t i = i0; i < i1; ++i) {
+            *r++ = b.tags[i];
+            for (int k = 0; k < npe; ++k) *r++ = m_.node_tags[b.nodes[i * npe + k]];
+          }
           raw(rec.data(), rec.size() * sizeof(std::uint64_t));
         }
       } else {

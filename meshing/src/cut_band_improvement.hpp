@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 #include <vector>
@@ -46,6 +47,9 @@ struct ElementSoup {
   std::uint32_t first_fault_group;
   const InputTetShape& parent;                // the input tetrahedra (by tet_parent)
   double bound_deg;                           // see score() in the .cpp and FaultCutOptions::bound_deg
+  // Appends the tetrahedra holding a node to `out` (any order): the caller's incidences, so that
+  // finding the band needs no scan of the millions of tetrahedra.
+  std::function<void(std::uint32_t node, std::vector<std::uint32_t>& out)> tets_at;
 };
 
 struct BandImprovement {

@@ -17,6 +17,7 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
 #include "cut_band_improvement.hpp"
+#include "node_grid.hpp"
 #include "vec3.hpp"
 
 namespace ugs {
@@ -217,14 +218,14 @@ public:
     Tp_.reserve(ntets);
     for (std::size_t b = 0; b < mesh.blocks.size(); ++b) {
       const auto& blk = mesh.blocks[b];
-      if (blk.type == ElementType::Tetrahedron)
-        for (std::size_t i = 0; i < blk.size(); ++i) {
-          const auto e = blk.element(i);
+      if (blk.type == ElementType::Tetrahedron) {  // from the node array (element(i) looked up the type per element)
+        const std::uint32_t* e = blk.nodes.data();
+        for (std::size_t i = 0; i < blk.size(); ++i, e += 4) {
           T_.push_back({e[0], e[1], e[2], e[3]});
-          Tb_.push_back(static_cast<std::uint32_t>(b));
           Tp_.push_back(static_cast<std::uint32_t>(Tp_.size()));
         }
-      else if (blk.type == ElementType::Triangle)
+        Tb_.insert(Tb_.end(), blk.size(), static_cast<std::uint32_t>(b));
+      } else if (blk.type == ElementType::Triangle)
         for (std::size_t i = 0; i < blk.size(); ++i) {
           const auto e = blk.element(i);
           F_.push_back({e[0], e[1], e[2]});
@@ -241,6 +242,7 @@ public:
     tets_at_.build(X_.size(), T_);
     tris_at_.build(X_.size(), F_);
     for (const auto& t : T_) raise_reach(t);
+    grid_.build(X_, reach_);
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
@@ -383,40 +385,58 @@ public:
   // for each bound, a node within tol + |m| D of its inside: that end is such a node, and D is at
   // most the reach of each of its nodes. So only the tetrahedra around nodes passing that test
   // (with a margin for rounding) are examined, in increasing order as a scan of all would meet them.
+  // The nodes are tested cell by cell of grid_, skipping the cells whose box (widened by their
+  // largest reach, and by a margin for rounding) cannot hold a node passing the test, and the nodes
+  // the grid does not place (added or snapped since it was built) one by one: the same nodes pass.
   std::vector<std::array<std::uint32_t, 2>> plane_edges(const CutPanel& p) const {
-    std::vector<double> g(X_.size());
+    auto g = [&](std::uint32_t i) { return dot(p.n, X_[i]) - p.c; };
     std::vector<std::uint32_t> near;
     const double nn = norm(p.n);
     std::vector<double> mm;
     for (const auto& b : p.bounds) mm.push_back(norm(b.m));
-    for (std::size_t i = 0; i < X_.size(); ++i) {
-      g[i] = dot(p.n, X_[i]) - p.c;
+    auto test = [&](std::uint32_t i) {
       const double r = 1.001 * reach_[i] + 2 * tol_;
-      bool in = std::abs(g[i]) <= nn * r;
+      bool in = std::abs(g(i)) <= nn * r;
       for (std::size_t k = 0; in && k < p.bounds.size(); ++k) in = dot(p.bounds[k].m, X_[i]) - p.bounds[k].d <= tol_ + mm[k] * r;
-      if (in) near.push_back(static_cast<std::uint32_t>(i));
-    }
+      if (in) near.push_back(i);
+    };
+    const double round = 1e-8 * (nn * grid_.extent() + std::abs(p.c));
+    grid_.visit(
+        [&](const Point3& lo, const Point3& hi, double reach) {
+          const double r = 1.001 * reach + 2 * tol_;
+          if (NodeGrid::min_over(p.n, p.c, lo, hi) > nn * r + round || NodeGrid::max_over(p.n, p.c, lo, hi) < -nn * r - round)
+            return false;
+          for (std::size_t k = 0; k < p.bounds.size(); ++k)
+            if (NodeGrid::min_over(p.bounds[k].m, p.bounds[k].d, lo, hi) >
+                tol_ + mm[k] * r + 1e-8 * (mm[k] * grid_.extent() + std::abs(p.bounds[k].d)))
+              return false;
+          return true;
+        },
+        test);
+    for (auto v : snapped_nodes_) test(v);  // moved since the grid was built (tested twice at most: duplicates are harmless)
+    for (std::size_t i = grid_.nodes(); i < X_.size(); ++i) test(static_cast<std::uint32_t>(i));
     std::vector<std::array<std::uint32_t, 2>> out;
     std::unordered_set<std::uint64_t> seen;
     std::vector<Point3> section;
     for (auto ti : elements_at(tets_at_, near)) {
       const auto& t = T_[ti];
-      double lo = g[t[0]], hi = lo;
+      const double gt[4] = {g(t[0]), g(t[1]), g(t[2]), g(t[3])};
+      double lo = gt[0], hi = lo;
       for (int k = 1; k < 4; ++k) {
-        lo = std::min(lo, g[t[k]]);
-        hi = std::max(hi, g[t[k]]);
+        lo = std::min(lo, gt[k]);
+        hi = std::max(hi, gt[k]);
       }
       if (!(lo < -tol_ && hi > tol_)) continue;
       section.clear();
       for (int k = 0; k < 4; ++k)
-        if (std::abs(g[t[k]]) <= tol_) section.push_back(X_[t[k]]);
+        if (std::abs(gt[k]) <= tol_) section.push_back(X_[t[k]]);
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
-          if (crosses(g[t[i]], g[t[j]])) section.push_back(crossing(t[i], t[j], g[t[i]], g[t[j]]));
+          if (crosses(gt[i], gt[j])) section.push_back(crossing(t[i], t[j], gt[i], gt[j]));
       if (separated(section, p.bounds, nullptr)) continue;
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
-          if (crosses(g[t[i]], g[t[j]]) && seen.insert(edge_key(t[i], t[j])).second) out.push_back({t[i], t[j]});
+          if (crosses(gt[i], gt[j]) && seen.insert(edge_key(t[i], t[j])).second) out.push_back({t[i], t[j]});
     }
     return out;
   }
@@ -498,20 +518,14 @@ public:
   // Faces lying in panel p with their centroid inside it, sorted node triples -> oriented face.
   void collect(const CutPanel& p, std::map<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>>& faces,
                std::map<std::array<std::uint32_t, 3>, int>& uses) const {
-    const std::size_t n = X_.size();
-    std::vector<char> on(n);
-    std::vector<std::uint32_t> on_list;
-    for (std::size_t i = 0; i < n; ++i) {
-      on[i] = std::abs(dot(p.n, X_[i]) - p.c) <= tol_;
-      if (on[i]) on_list.push_back(static_cast<std::uint32_t>(i));
-    }
+    auto on = [&](std::uint32_t i) { return std::abs(dot(p.n, X_[i]) - p.c) <= tol_; };
     static constexpr int face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (auto i : elements_at(tets_at_, on_list)) {
+    for (auto i : elements_at(tets_at_, nodes_on_plane(p.n, p.c))) {
       const auto& t = T_[i];
-      if (on[t[0]] + on[t[1]] + on[t[2]] + on[t[3]] < 3) continue;
+      if (on(t[0]) + on(t[1]) + on(t[2]) + on(t[3]) < 3) continue;
       for (const auto& f : face_of) {
         std::array<std::uint32_t, 3> tri{t[f[0]], t[f[1]], t[f[2]]};
-        if (!on[tri[0]] || !on[tri[1]] || !on[tri[2]]) continue;
+        if (!on(tri[0]) || !on(tri[1]) || !on(tri[2])) continue;
         Point3 cen{0, 0, 0};
         for (auto v : tri)
           for (int k = 0; k < 3; ++k) cen[k] += X_[v][k] / 3;
@@ -597,7 +611,8 @@ public:
   // Steps 5 and 6: collapse of short edges and smoothing in the band the cut made
   // (cut_band_improvement.hpp).
   BandImprovement improve(std::size_t first_new, double ratio, double smooth_below_deg, double bound_deg) {
-    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), *parent_, bound_deg},
+    return improve_cut_band({X_, T_, Tb_, Tp_, F_, Fb_, static_cast<std::uint32_t>(mesh_.blocks.size()), *parent_, bound_deg,
+                             [this](std::uint32_t v, std::vector<std::uint32_t>& out) { tets_at_.append(v, out); }},
                             first_new, ratio, smooth_below_deg, tol_);
   }
 
@@ -648,13 +663,18 @@ public:
       b.type = ElementType::Triangle;
       mesh_.blocks.push_back(std::move(b));
     }
+    // Each block's size first, then plain appends (an insert per element was a third of this).
+    std::vector<std::size_t> size(mesh_.blocks.size(), 0);
+    for (auto b : Tb_) size[b] += 4;
+    for (auto b : Fb_) size[b] += 3;
+    for (std::size_t b = 0; b < size.size(); ++b) mesh_.blocks[b].nodes.reserve(size[b]);
     for (std::size_t i = 0; i < T_.size(); ++i) {
-      auto& b = mesh_.blocks[Tb_[i]];
-      b.nodes.insert(b.nodes.end(), T_[i].begin(), T_[i].end());
+      auto& nodes = mesh_.blocks[Tb_[i]].nodes;
+      for (auto v : T_[i]) nodes.push_back(v);
     }
     for (std::size_t i = 0; i < F_.size(); ++i) {
-      auto& b = mesh_.blocks[Fb_[i]];
-      b.nodes.insert(b.nodes.end(), F_[i].begin(), F_[i].end());
+      auto& nodes = mesh_.blocks[Fb_[i]].nodes;
+      for (auto v : F_[i]) nodes.push_back(v);
     }
     (void)nb;
     std::uint64_t tag = 0;
@@ -820,9 +840,7 @@ private:
     auto& o = on_plane_;
     if (o.panel != &p) {
       o.panel = &p;
-      o.nodes.clear();
-      for (std::size_t i = 0; i < X_.size(); ++i)
-        if (on(static_cast<std::uint32_t>(i))) o.nodes.push_back(static_cast<std::uint32_t>(i));
+      o.nodes = nodes_on_plane(p.n, p.c);
     } else {
       std::vector<std::uint32_t> test = std::move(o.nodes);
       test.insert(test.end(), snapped_nodes_.begin() + static_cast<std::ptrdiff_t>(o.snapped), snapped_nodes_.end());
@@ -836,6 +854,29 @@ private:
     o.scanned = X_.size();
     o.snapped = snapped_nodes_.size();
     return o.nodes;
+  }
+
+  // The nodes within tol_ of the plane n . x = c, in increasing order: grid_'s cells whose box
+  // (widened by a margin for rounding) reaches within tol_ of it, and the nodes added or snapped
+  // since it was built one by one (the same nodes as a scan of all).
+  std::vector<std::uint32_t> nodes_on_plane(const Point3& n, double c) const {
+    auto on = [&](std::uint32_t i) { return std::abs(dot(n, X_[i]) - c) <= tol_; };
+    const double round = 1e-8 * (norm(n) * grid_.extent() + std::abs(c));
+    std::vector<std::uint32_t> out;
+    grid_.visit(
+        [&](const Point3& lo, const Point3& hi, double) {
+          return !(NodeGrid::min_over(n, c, lo, hi) > tol_ + round || NodeGrid::max_over(n, c, lo, hi) < -tol_ - round);
+        },
+        [&](std::uint32_t i) {
+          if (on(i)) out.push_back(i);
+        });
+    for (auto v : snapped_nodes_)
+      if (v < grid_.nodes() && on(v)) out.push_back(v);
+    for (std::size_t i = grid_.nodes(); i < X_.size(); ++i)
+      if (on(static_cast<std::uint32_t>(i))) out.push_back(static_cast<std::uint32_t>(i));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
   }
 
   // The elements holding one of `nodes`, in increasing order.
@@ -854,7 +895,10 @@ private:
         d2 = std::max(d2, dot(e, e));
       }
     const double d = std::sqrt(d2);
-    for (auto v : t) reach_[v] = std::max(reach_[v], d);
+    for (auto v : t) {
+      reach_[v] = std::max(reach_[v], d);
+      grid_.raise(v, reach_[v]);
+    }
   }
 
   void apply(const EdgeMap& marked) {
@@ -926,6 +970,7 @@ private:
   std::vector<std::uint32_t> Fb_;
   Incidence tets_at_, tris_at_;        // per node: the tetrahedra / triangles holding it
   std::vector<double> reach_;          // per node: at least the diameter of each tetrahedron holding it
+  NodeGrid grid_;                      // the input nodes, for plane_edges (built after reach_)
   std::vector<const CutPanel*> done_;  // the panels cut so far
   std::size_t snapped_ = 0;
   std::vector<std::uint32_t> snapped_nodes_;  // every node snap_onto moved, in order

@@ -322,20 +322,58 @@ PolygonSet::PolygonSet(std::vector<Polygon> polygons) : polygons_(std::move(poly
     std::array<double, 4> b{inf, inf, -inf, -inf};
     for (const auto& q : p.outer) b = {std::min(b[0], q[0]), std::min(b[1], q[1]), std::max(b[2], q[0]), std::max(b[3], q[1])};
     boxes_.push_back(b);
+    auto& s = slabs_.emplace_back();
+    s.push_back(slabs_of(p.outer));
+    for (const auto& h : p.holes) s.push_back(slabs_of(h));
   }
 }
 
-namespace {
-bool ring_crossings_odd(const std::vector<XY>& r, const XY& p) {
+// Non-decreasing in y (a difference and a product by a positive constant, truncated), so an edge
+// listed in the slabs of its lower and upper ends and those between is in the slab of every y
+// between them.
+std::size_t PolygonSet::RingSlabs::slab(double y) const {
+  const double k = (y - y0) * per_y;
+  return std::min(start.size() - 3, static_cast<std::size_t>(std::max(0.0, k)));  // slabs 0 .. start.size() - 3
+}
+
+PolygonSet::RingSlabs PolygonSet::slabs_of(const std::vector<XY>& r) {
+  RingSlabs s;
+  if (r.size() < 3) return s;
+  s.y0 = s.y1 = r[0][1];
+  for (const auto& q : r) {
+    s.y0 = std::min(s.y0, q[1]);
+    s.y1 = std::max(s.y1, q[1]);
+  }
+  const std::size_t n = std::max<std::size_t>(1, r.size() / 2);
+  s.per_y = s.y1 > s.y0 ? static_cast<double>(n) / (s.y1 - s.y0) : 0.0;
+  s.start.assign(n + 2, 0);
+  // An edge crosses a point's ray only if exactly one end is above the point: lo <= y < hi.
+  auto each = [&](auto&& f) {
+    for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+      const double lo = std::min(r[i][1], r[j][1]), hi = std::max(r[i][1], r[j][1]);
+      if (!(lo < hi)) continue;
+      for (std::size_t k = s.slab(lo), last = s.slab(hi); k <= last; ++k) f(k, static_cast<std::uint32_t>(i));
+    }
+  };
+  each([&](std::size_t k, std::uint32_t) { ++s.start[k + 2]; });
+  for (std::size_t k = 2; k < s.start.size(); ++k) s.start[k] += s.start[k - 1];
+  s.edges.resize(s.start.back());
+  each([&](std::size_t k, std::uint32_t i) { s.edges[s.start[k + 1]++] = i; });
+  return s;
+}
+
+bool PolygonSet::crossings_odd(const std::vector<XY>& r, const RingSlabs& s, const XY& p) {
+  if (s.start.empty() || !(p[1] >= s.y0 && p[1] < s.y1)) return false;  // no edge has lo <= p.y < hi
+  const std::size_t k = s.slab(p[1]);
   bool in = false;
-  for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++) {
+  for (std::uint32_t e = s.start[k]; e < s.start[k + 1]; ++e) {
+    const std::size_t i = s.edges[e], j = i == 0 ? r.size() - 1 : i - 1;
     const auto& a = r[i];
     const auto& b = r[j];
     if ((a[1] > p[1]) != (b[1] > p[1]) && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
   }
   return in;
 }
-}  // namespace
 
 bool PolygonSet::contains(const XY& p) const {
   for (std::size_t k = 0; k < polygons_.size(); ++k) {
@@ -343,9 +381,9 @@ bool PolygonSet::contains(const XY& p) const {
     if (p[0] < b[0] || p[0] > b[2] || p[1] < b[1] || p[1] > b[3]) continue;
     const auto& poly = polygons_[k];
     if (poly.outer.size() < 3) continue;
-    bool in = ring_crossings_odd(poly.outer, p);
-    for (const auto& h : poly.holes)
-      if (h.size() >= 3 && ring_crossings_odd(h, p)) in = !in;
+    bool in = crossings_odd(poly.outer, slabs_[k][0], p);
+    for (std::size_t h = 0; h < poly.holes.size(); ++h)
+      if (poly.holes[h].size() >= 3 && crossings_odd(poly.holes[h], slabs_[k][h + 1], p)) in = !in;
     if (in) return true;
   }
   return false;

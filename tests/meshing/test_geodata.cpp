@@ -3,6 +3,7 @@
 // reprojected to the model CRS, and point-in-polygon with holes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include <fmt/format.h>
@@ -115,4 +116,39 @@ TEST(PolygonSet, HolesAndSeveralPolygons) {
   EXPECT_TRUE(s.contains({21, 1}));
   EXPECT_FALSE(s.contains({29, 9}));
   EXPECT_FALSE(s.contains({-1, 5}));
+}
+
+// The slab index visits only the edges whose y-range holds the point: the answer must be the
+// every-edge even-odd rule's, also for points at a vertex's height and on the ring's y-range ends.
+TEST(PolygonSet, SlabsGiveTheEveryEdgeAnswer) {
+  auto every_edge = [](const std::vector<XY>& r, const XY& p) {
+    bool in = false;
+    for (std::size_t i = 0, j = r.size() - 1; i < r.size(); j = i++)
+      if ((r[i][1] > p[1]) != (r[j][1] > p[1]) &&
+          p[0] < (r[j][0] - r[i][0]) * (p[1] - r[i][1]) / (r[j][1] - r[i][1]) + r[i][0])
+        in = !in;
+    return in;
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.2, 1.0);
+  geo::Polygon star;  // a star-shaped ring of 301 vertices around (500, 500), radius 100 .. 500, and a hole
+  for (int k = 0; k < 301; ++k) {
+    const double a = 2 * 3.14159265358979 * k / 301, r = 500 * u(rng);
+    star.outer.push_back({500 + r * std::cos(a), 500 + r * std::sin(a)});
+  }
+  star.outer.push_back({600, 500});  // a horizontal edge back to the start's height band
+  star.holes = {{{480, 480}, {520, 480}, {520, 520}, {480, 520}}};
+  const geo::PolygonSet s({star});
+  std::uniform_real_distribution<double> w(-10, 1010);
+  int inside = 0, checked = 0;
+  for (int k = 0; k < 20000; ++k) {
+    XY p{w(rng), w(rng)};
+    if (k % 4 == 0) p[1] = star.outer[static_cast<std::size_t>(k / 4) % star.outer.size()][1];  // a vertex's height
+    const bool expect = every_edge(star.outer, p) != every_edge(star.holes[0], p);
+    ASSERT_EQ(s.contains(p), expect) << p[0] << " " << p[1];
+    inside += expect;
+    ++checked;
+  }
+  EXPECT_GT(inside, 2000);  // the test exercised both answers
+  EXPECT_LT(inside, checked - 2000);
 }

@@ -49,6 +49,8 @@ std::string vector_crs(const std::string& path);
 VectorData read_vector(const std::string& path, const std::string& model_wkt, const std::string& where = "");
 
 // Even-odd point-in-polygon over a set of polygons (holes excluded), with bounding-box culling.
+// Each ring's edges are sorted into horizontal slabs, so that a point visits only the edges whose
+// y-range holds it (the others cannot cross its ray): the same answer as testing every edge.
 class PolygonSet {
 public:
   PolygonSet() = default;
@@ -57,8 +59,17 @@ public:
   bool empty() const { return polygons_.empty(); }
 
 private:
+  struct RingSlabs {
+    double y0 = 0, y1 = 0, per_y = 0;  // the ring's y-range, slabs per unit of y
+    std::vector<std::uint32_t> start;   // per slab: its first entry in edges
+    std::vector<std::uint32_t> edges;   // edge i joins vertex i and the one before it
+    std::size_t slab(double y) const;
+  };
+  static RingSlabs slabs_of(const std::vector<XY>& ring);
+  static bool crossings_odd(const std::vector<XY>& ring, const RingSlabs& s, const XY& p);
   std::vector<Polygon> polygons_;
   std::vector<std::array<double, 4>> boxes_;
+  std::vector<std::vector<RingSlabs>> slabs_;  // per polygon: its outer ring, then its holes
 };
 
 struct RasterSampling {
