@@ -56,6 +56,46 @@ bool root() {
 
 std::vector<double> block_dp(const mech::Model& model, double dp) { return test::cell_values_in(model, in_block, dp); }
 
+// test::dipping_fault_box with its fault inserted.
+Mesh faulted_box() {
+  Mesh m = test::dipping_fault_box(100);
+  test::insert_all_faults(m);
+  return m;
+}
+
+// A history of block depletions on the faulted model: per step the displacement, the multipliers,
+// the stress change and the element states (0 linear, 1 virgin, 2 unloading, 3 reloading), and the
+// contact's counts.
+struct FaultedRun {
+  std::vector<std::vector<double>> u, lambda, stress, state;
+  contact::ContactStats stats;
+  int newton = 0;
+};
+
+FaultedRun run_faulted(const mech::Model& m, const contact::FaultModel& fm, const mech::SolverOptions& opt,
+                       contact::SaddleSolver solver, bool reuse, const std::vector<double>& history) {
+  FaultedRun out;
+  contact::ContactOptions copt;
+  copt.solver = solver;
+  copt.reuse_preconditioner = reuse;
+  contact::FaultContact fc(MPI_COMM_WORLD, &fm, copt);
+  mech::MechanicsSolver s(MPI_COMM_WORLD, &m, opt);
+  s.set_coupling(fc);
+  fc.set_pressure_change(std::vector<double>(fm.pairs.size(), 0.0));
+  for (double dp : history) {
+    const auto r = s.advance(block_dp(m, dp), "step");
+    EXPECT_TRUE(r.converged) << r.failure;
+    out.newton += r.newton_iterations;
+    out.u.push_back(s.gather_displacement());
+    out.lambda.push_back(fc.gather().lambda);
+    const auto c = s.gather_cells();
+    out.stress.push_back(c.stress_change);
+    out.state.push_back(c.state);
+  }
+  out.stats = fc.stats();
+  return out;
+}
+
 }  // namespace
 
 class LockedHistory : public ::testing::TestWithParam<contact::SaddleSolver> {};
@@ -203,9 +243,7 @@ TEST(LockedHistorySibling, ContinuousAnswerDoesNotDependOnTheLinearSolver) {
 // one factorisation, and the kept factors give the bits of refactoring at every solve (the same
 // factors, the same GMRES iteration; on one process). Before, every solve refactorised.
 TEST(SaddleFactorReuse, UnchangedOperatorIsFactorisedOnceAndGivesTheSameBits) {
-  const Mesh plain = test::dipping_fault_box(100);
-  Mesh faulted = plain;
-  test::insert_all_faults(faulted);
+  const Mesh faulted = faulted_box();
   CaseFile cs = hypo_case();
   cs.materials[0].law = MaterialLaw::ElasticDepth;
   cs.materials[0].c_R.reset();
@@ -215,29 +253,8 @@ TEST(SaddleFactorReuse, UnchangedOperatorIsFactorisedOnceAndGivesTheSameBits) {
   ASSERT_FALSE(m1.has_hypoplastic());
   const contact::FaultModel fm = contact::build_fault_model(faulted, cs, m1, contact::geostatic_fault_state(m1.initial));
   const std::vector<double> history{-2e6, -4e6, -6e6, -4e6, -2e6, -4e6, -7e6};
-  struct Run {
-    std::vector<std::vector<double>> u, lambda;
-    contact::ContactStats stats;
-  };
-  auto run = [&](bool reuse) {
-    Run out;
-    contact::ContactOptions copt;
-    copt.solver = contact::SaddleSolver::Mumps;
-    copt.reuse_preconditioner = reuse;
-    contact::FaultContact fc(MPI_COMM_WORLD, &fm, copt);
-    mech::MechanicsSolver s(MPI_COMM_WORLD, &m1, opt);
-    s.set_coupling(fc);
-    fc.set_pressure_change(std::vector<double>(fm.pairs.size(), 0.0));
-    for (double dp : history) {
-      const auto r = s.advance(block_dp(m1, dp), "step");
-      EXPECT_TRUE(r.converged) << r.failure;
-      out.u.push_back(s.gather_displacement());
-      out.lambda.push_back(fc.gather().lambda);
-    }
-    out.stats = fc.stats();
-    return out;
-  };
-  const Run kept = run(true), refactored = run(false);
+  const FaultedRun kept = run_faulted(m1, fm, opt, contact::SaddleSolver::Mumps, true, history),
+                   refactored = run_faulted(m1, fm, opt, contact::SaddleSolver::Mumps, false, history);
   std::printf("kept: %zu solves, %zu linear iterations, %zu factorisations; refactored: %zu solves, %zu iterations, %zu "
               "factorisations\n", kept.stats.solves, kept.stats.linear_iterations, kept.stats.preconditioner_setups,
               refactored.stats.solves, refactored.stats.linear_iterations, refactored.stats.preconditioner_setups);
@@ -280,9 +297,7 @@ TEST(SaddleFactorReuse, UnchangedOperatorIsFactorisedOnceAndGivesTheSameBits) {
 // fresh setups within 1e-8 (the Newton tolerance 1e-10), every element on the same branch. Before
 // (2026-11-27), every solve of a step with more than one Newton iteration set up.
 TEST(SaddleFieldSplitReuse, NonlinearStepsKeepTheHierarchyAndTheAnswer) {
-  const Mesh plain = test::dipping_fault_box(100);
-  Mesh faulted = plain;
-  test::insert_all_faults(faulted);
+  const Mesh faulted = faulted_box();
   const CaseFile cs = hypo_case();
   mech::SolverOptions opt;
   opt.linear = mech::LinearSolver::Mumps;
@@ -291,34 +306,8 @@ TEST(SaddleFieldSplitReuse, NonlinearStepsKeepTheHierarchyAndTheAnswer) {
   ASSERT_TRUE(m1.has_hypoplastic());
   const contact::FaultModel fm = contact::build_fault_model(faulted, cs, m1, contact::geostatic_fault_state(m1.initial));
   const std::vector<double> history{-2e6, -4e6, -6e6, -4e6, -2e6, -4e6, -7e6, -8e6};
-  struct Run {
-    std::vector<std::vector<double>> u, stress;
-    std::vector<std::vector<double>> state;  // per element: 0 linear, 1 virgin, 2 unloading, 3 reloading
-    contact::ContactStats stats;
-    int newton = 0;
-  };
-  auto run = [&](bool reuse) {
-    Run out;
-    contact::ContactOptions copt;
-    copt.solver = contact::SaddleSolver::FieldSplit;
-    copt.reuse_preconditioner = reuse;
-    contact::FaultContact fc(MPI_COMM_WORLD, &fm, copt);
-    mech::MechanicsSolver s(MPI_COMM_WORLD, &m1, opt);
-    s.set_coupling(fc);
-    fc.set_pressure_change(std::vector<double>(fm.pairs.size(), 0.0));
-    for (double dp : history) {
-      const auto r = s.advance(block_dp(m1, dp), "step");
-      EXPECT_TRUE(r.converged) << r.failure;
-      out.newton += r.newton_iterations;
-      out.u.push_back(s.gather_displacement());
-      const auto c = s.gather_cells();
-      out.stress.push_back(c.stress_change);
-      out.state.push_back(c.state);
-    }
-    out.stats = fc.stats();
-    return out;
-  };
-  const Run kept = run(true), fresh = run(false);
+  const FaultedRun kept = run_faulted(m1, fm, opt, contact::SaddleSolver::FieldSplit, true, history),
+                   fresh = run_faulted(m1, fm, opt, contact::SaddleSolver::FieldSplit, false, history);
   std::printf("kept: %zu solves, %zu linear iterations, %zu setups; fresh: %zu solves, %zu linear iterations, %zu setups\n",
               kept.stats.solves, kept.stats.linear_iterations, kept.stats.preconditioner_setups, fresh.stats.solves,
               fresh.stats.linear_iterations, fresh.stats.preconditioner_setups);
@@ -422,9 +411,13 @@ TEST(LockedHistorySibling, HypreMatrixGivesTheConvertedMatrixsAnswer) {
   for (std::size_t k = 0; k < history.size(); ++k) {
     const auto rh = sh.advance(block_dp(m0, history[k]), "hypre");
     // The option is read when the matrix is created, at the first step.
-    if (k == 0) ASSERT_EQ(PetscOptionsSetValue(nullptr, "-ugs_aij_matrix", nullptr), 0);
+    if (k == 0) {
+      ASSERT_EQ(PetscOptionsSetValue(nullptr, "-ugs_aij_matrix", nullptr), 0);
+    }
     const auto ra = sa.advance(block_dp(m0, history[k]), "aij");
-    if (k == 0) ASSERT_EQ(PetscOptionsClearValue(nullptr, "-ugs_aij_matrix"), 0);
+    if (k == 0) {
+      ASSERT_EQ(PetscOptionsClearValue(nullptr, "-ugs_aij_matrix"), 0);
+    }
     ASSERT_TRUE(rh.converged && ra.converged);
     linear_h += rh.linear_iterations;
     linear_a += ra.linear_iterations;
