@@ -14,7 +14,7 @@
 //   - a kept one failed (the solve is repeated after a setup).
 // Across Newton iterations and load steps alike. Until 2026-11-27 every solve of a nonlinear step
 // (virgin loading: the tangent changes at every Newton iteration) set up, because a hierarchy frozen
-// with its fine level had cost 30 % more linear iterations there (session 12); with the fine level
+// with its fine level had cost 30 % more linear iterations there; with the fine level
 // current the coarsened history's production months take the same iterations with 1 setup instead
 // of 26 (docs/fault-mechanics.md, "Production months").
 // Counts only, never measured time: the decision changes the numbers (reuse_rule.hpp).

@@ -95,8 +95,8 @@ bool MechanicsSolver::Impl::hypre_owns_matrix() const {
   // The fault coupling reads A's rows as AIJ; GAMG and CHOLMOD (hypo-plastic) precondition with a
   // copy P of A or of its symmetric form.
   if (coupling || separate_p()) return false;
-  // -ugs_aij_matrix (after "--"): a PETSc AIJ matrix that PCHYPRE converts at each setup (before
-  // session 14 for hypo-plastic models; kept to compare the two and for the tests).
+  // -ugs_aij_matrix (after "--"): a PETSc AIJ matrix that PCHYPRE converts at each setup (until
+  // 2026-11-27 for hypo-plastic models; kept to compare the two and for the tests).
   if (petsc_option_given("-ugs_aij_matrix")) return false;
   PC pc;
   UGS_PETSC(KSPGetPC(ksp, &pc));
