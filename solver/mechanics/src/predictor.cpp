@@ -75,20 +75,57 @@ void Predictor::refresh(Mat A) {
   // W <- W V diag(lambda)^-1/2 over the eigenpairs above a cutoff (drops dependent directions).
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G);
   const Eigen::VectorXd lam = es.eigenvalues();
-  std::vector<Vec> nb;
+  // coef[t]: the combination of the old directions that gives new direction t (largest eigenvalue first).
+  std::vector<std::vector<PetscScalar>> coef;
   for (int k = m - 1; k >= 0; --k) {
     if (!(lam(k) > 1e-10 * lam(m - 1))) break;
-    Vec w;
-    UGS_PETSC(VecDuplicate(like_, &w));
-    std::vector<PetscScalar> coef(m);
-    for (int i = 0; i < m; ++i) coef[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
-    UGS_PETSC(VecSet(w, 0.0));
-    UGS_PETSC(VecMAXPY(w, m, coef.data(), basis_.data()));
-    nb.push_back(w);
+    std::vector<PetscScalar> ck(m);
+    for (int i = 0; i < m; ++i) ck[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
+    coef.push_back(std::move(ck));
   }
-  for (Vec& v : basis_) UGS_PETSC(VecDestroy(&v));
-  basis_ = std::move(nb);
+  combine_in_place(coef);
   PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
+}
+
+void Predictor::combine_in_place(const std::vector<std::vector<PetscScalar>>& coef) {
+  const int m = static_cast<int>(basis_.size()), kept = static_cast<int>(coef.size());
+  PetscInt n = 0;
+  UGS_PETSC(VecGetLocalSize(basis_[0], &n));
+  std::vector<PetscScalar*> w(m);
+  for (int i = 0; i < m; ++i) UGS_PETSC(VecGetArray(basis_[i], &w[i]));
+  // Block by block of the local entries: the new directions' block is VecMAXPY of the old
+  // directions' block (sequential views on it), computed in full before it overwrites them. The
+  // kernels work entry by entry (loops, or a BLAS axpy whose vector loop takes groups of entries
+  // counted from the start: kBlock is a multiple of them), so every entry gets the bits of
+  // VecMAXPY on the whole vectors, without a second basis in memory (24 vectors of the size of u).
+  static constexpr PetscInt kBlock = 4096;
+  std::vector<PetscScalar> fresh(static_cast<std::size_t>(kept) * kBlock);
+  // Blocks [lo, lo + len) for lo in [from, to), all of length len.
+  auto run = [&](PetscInt from, PetscInt to, PetscInt len) {
+    if (from >= to) return;
+    std::vector<Vec> olds(m), news(kept);
+    for (int i = 0; i < m; ++i) UGS_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, len, nullptr, &olds[i]));
+    for (int t = 0; t < kept; ++t)
+      UGS_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, len, fresh.data() + static_cast<std::size_t>(t) * kBlock, &news[t]));
+    for (PetscInt lo = from; lo < to; lo += len) {
+      for (int i = 0; i < m; ++i) UGS_PETSC(VecPlaceArray(olds[i], w[i] + lo));
+      for (int t = 0; t < kept; ++t) {
+        UGS_PETSC(VecSet(news[t], 0.0));
+        UGS_PETSC(VecMAXPY(news[t], m, coef[t].data(), olds.data()));
+      }
+      for (int i = 0; i < m; ++i) UGS_PETSC(VecResetArray(olds[i]));
+      for (int t = 0; t < kept; ++t) std::copy_n(fresh.data() + static_cast<std::size_t>(t) * kBlock, len, w[t] + lo);
+    }
+    for (Vec& v : olds) UGS_PETSC(VecDestroy(&v));
+    for (Vec& v : news) UGS_PETSC(VecDestroy(&v));
+  };
+  const PetscInt whole = n / kBlock * kBlock;
+  run(0, whole, kBlock);
+  run(whole, n, n - whole);
+  for (int i = 0; i < m; ++i) UGS_PETSC(VecRestoreArray(basis_[i], &w[i]));
+  // The directions beyond the kept ones (dependent) go.
+  for (int i = kept; i < m; ++i) UGS_PETSC(VecDestroy(&basis_[i]));
+  basis_.resize(kept);
 }
 
 void Predictor::remember(Mat A, Vec v) {

@@ -178,6 +178,8 @@ class Predictor {
   static constexpr int kRecycle = 24;
   // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw_).
   double projection_residual(Mat A, Vec r, Vec du);
+  // W <- W C in place: new direction t = sum_i coef[t][i] w_i; the directions past coef.size() go.
+  void combine_in_place(const std::vector<std::vector<PetscScalar>>& coef);
   std::vector<Vec> basis_;  // W (A-orthonormal); A W is not kept (recomputed where needed)
   Vec aw_ = nullptr;        // work vector: A du, A v, A w_j
   Vec like_ = nullptr;  // u: the layout of new basis vectors (not owned)

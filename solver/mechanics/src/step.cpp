@@ -49,25 +49,41 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
   for (std::size_t c = 0; c < lm.n_cells(); ++c) target[c] = dp_all[lm.cell_index[c]];
   dp_all = {};
 
-  // A failed step leaves the state of the previous one (committed sub-steps are undone).
-  const std::vector<double> start = dp_cell;
-  const auto committed_start = hyp.committed;
-  const auto phase_start = hyp.committed_phase;
-  const auto c_start = hyp.committed_c;
-  const auto last_ddp_start = hyp.last_ddp;  // the direction of the next step's first tangent
+  // A failed step leaves the state of the previous one (committed sub-steps are undone). The start
+  // of the step is copied only when the step is split: until a sub-step short of the end (b < 1)
+  // commits, the committed state is the start (a commit at b = 1 ends the step). Most steps are
+  // not split, and the copies (pressure changes of the cells, the hypo-plastic elements' committed
+  // states: ~130 bytes an element) would live through all their solves, the peak of the process.
+  std::vector<double> start, dp_b;
+  std::vector<fem::PointState> committed_start;
+  std::vector<fem::LoadingPhase> phase_start;
+  std::vector<double> c_start;
+  std::vector<std::int8_t> last_ddp_start;  // the direction of the next step's first tangent
+  bool saved = false;
   UGS_PETSC(VecCopy(u, u_step));
   if (coupling) coupling->begin_step();
   double done = 0, h = 1;
   const double h_min = 1.0 / opt.max_substeps;
-  std::vector<double> dp_b(lm.n_cells());
   while (done < 1) {
     const double b = std::min(1.0, done + h);
-    for (std::size_t k = 0; k < dp_b.size(); ++k) dp_b[k] = b == 1.0 ? target[k] : start[k] + b * (target[k] - start[k]);
+    if (b < 1) {
+      if (start.empty()) start = dp_cell;  // (no commit yet: dp_cell is the start)
+      dp_b.resize(lm.n_cells());
+      for (std::size_t k = 0; k < dp_b.size(); ++k) dp_b[k] = start[k] + b * (target[k] - start[k]);
+    }
+    const std::vector<double>& dp = b < 1 ? dp_b : target;
     std::string why;
     if (coupling) coupling->begin_substep(b);
-    if (newton.iterate(dp_b, rep, why)) {
+    if (newton.iterate(dp, rep, why)) {
       if (coupling) coupling->commit();
-      commit(dp_b);
+      if (b < 1 && !saved) {
+        committed_start = hyp.committed;
+        phase_start = hyp.committed_phase;
+        c_start = hyp.committed_c;
+        last_ddp_start = hyp.last_ddp;
+        saved = true;
+      }
+      commit(dp);
       remember_increment_from(u_save);
       done = b;
       ++rep.substeps;
@@ -79,11 +95,13 @@ StepReport MechanicsSolver::Impl::advance(const std::vector<double>& dp_rank0, c
       rep.substep_reason = fmt::format("{} (relative residuals {})", why, history_text(rep.residuals));
     if (h / 2 < h_min * (1 - 1e-12) || (!has_hyp && !coupling)) {
       if (coupling) coupling->revert_step();
-      hyp.committed = committed_start;
-      hyp.committed_phase = phase_start;
-      hyp.committed_c = c_start;
-      hyp.last_ddp = last_ddp_start;
-      dp_cell = start;
+      if (saved) {
+        hyp.committed = std::move(committed_start);
+        hyp.committed_phase = std::move(phase_start);
+        hyp.committed_c = std::move(c_start);
+        hyp.last_ddp = std::move(last_ddp_start);
+        dp_cell = std::move(start);
+      }
       UGS_PETSC(VecCopy(u_step, u));
       UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
       UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
