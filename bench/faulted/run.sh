@@ -70,13 +70,13 @@ if [ "${FAULTED_HISTORY:-0}" = 1 ]; then
     restart=""; [ -n "$state" ] && restart="--restart $state"
     t0=$(now)
     # shellcheck disable=SC2086
-    $MPI "$TOOL" faulted.msh --case "$CASE" --pressure flow_history.h5 -o "history/leg_$end.h5" --top none \
+    /usr/bin/time -f "%M" -o "history/leg_$end.rss" $MPI "$TOOL" faulted.msh --case "$CASE" --pressure flow_history.h5 -o "history/leg_$end.h5" --top none \
       --state "history/leg_${end}_state.h5" --until "$end" $restart -v "$@" 2>"history/leg_$end.log" || {
       tail -5 "history/leg_$end.log"; echo "FAIL: the faulted history failed in the leg to $end"; exit 1; }
     t=$(awk -v a="$t0" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }')
     echo "$t" > "history/leg_$end.wall"
     spent=$(awk -v a="$spent" -v b="$t" 'BEGIN { print a + b }')
-    echo "leg to $end ($((m - done_m)) months): $t s; $(grep -E '[0-9]+ steps: ' "history/leg_$end.log" | sed 's/^ugs-solve: //')"
+    echo "leg to $end ($((m - done_m)) months): $t s, largest process $(awk 'END { printf "%.0f MB", $1 / 1024 }' "history/leg_$end.rss"); $(grep -E '[0-9]+ steps: ' "history/leg_$end.log" | sed 's/^ugs-solve: //')"
     grep -E "max chi" "history/leg_$end.log" | tail -1 | sed 's/^ugs-solve: /  last step: /'
     done_m=$m state="history/leg_${end}_state.h5"
   done
@@ -95,11 +95,12 @@ if [ "${FAULTED_HISTORY:-0}" = 1 ]; then
   exit 0
 fi
 
+# Peak memory: GNU time's maximum resident set over mpirun's process tree, i.e. the largest process.
 t0=$(now)
-$MPI "$TOOL" faulted.msh --case case.toml --pressure flow.h5 -o faulted.h5 --top none -vv "$@" 2>faulted.log || {
+/usr/bin/time -f "%M" -o faulted.rss $MPI "$TOOL" faulted.msh --case case.toml --pressure flow.h5 -o faulted.h5 --top none -vv "$@" 2>faulted.log || {
   tail -5 faulted.log; echo "FAIL: the faulted run failed"; exit 1; }
 t1=$(now)
-$MPI "$TOOL" plain.msh --case case_plain.toml --pressure flow_plain.h5 -o plain.h5 --top none -vv "$@" 2>plain.log || {
+/usr/bin/time -f "%M" -o plain.rss $MPI "$TOOL" plain.msh --case case_plain.toml --pressure flow_plain.h5 -o plain.h5 --top none -vv "$@" 2>plain.log || {
   tail -5 plain.log; echo "FAIL: the continuous run failed"; exit 1; }
 t2=$(now)
 
@@ -110,11 +111,13 @@ echo "per step (continuous peer):"
 grep -E "^ugs-solve: step [0-9]+/[0-9]+ \(" plain.log | sed 's/^ugs-solve: /  /'
 grep -E "Newton iterations, .* linear iterations|saddle-point solves" faulted.log | sed 's/^ugs-solve: /faulted: /'
 tail -n +2 faulted_faults.csv | grep -v '^#' | awk -F, '$1 == "2015-11-01"' | sed 's/^/  /'
-awk -v a="$t0" -v b="$t1" -v c="$t2" -v np="$NP" 'BEGIN {
+awk -v a="$t0" -v b="$t1" -v c="$t2" -v np="$NP" -v fm="$(tail -1 faulted.rss)" -v pm="$(tail -1 plain.rss)" 'BEGIN {
   f = b - a; p = c - b
-  printf "faulted ugs-solve, %d processes:      %.1f s (target < 600 s)\n", np, f
-  printf "peer: continuous ugs-solve, same mesh: %.1f s\n", p
-  printf "ratio faulted / continuous: %.2f\n", f / p
+  printf "faulted ugs-solve, %d processes:      %.1f s (target < 600 s), largest process %.0f MB\n", np, f, fm / 1024
+  printf "peer: continuous ugs-solve, same mesh: %.1f s, largest process %.0f MB\n", p, pm / 1024
+  printf "ratio faulted / continuous: %.2f in time, %.2f in memory\n", f / p, fm / pm
   printf "metric: ugs-solve.faulted.wall %.1f s\nmetric: ugs-solve.continuous.wall %.1f s\n", f, p
+  printf "metric: ugs-solve.faulted.rss_largest %.0f MB\nmetric: ugs-solve.continuous.rss_largest %.0f MB\n", fm / 1024, pm / 1024
   printf "metric: faulted.ratio_to_continuous %.2f 1\n", f / p
+  printf "metric: faulted.memory_ratio_to_continuous %.2f 1\n", fm / pm
   exit !(f < 600) }' || { echo "FAIL: over 10 minutes"; exit 1; }

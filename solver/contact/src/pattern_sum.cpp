@@ -56,10 +56,15 @@ bool PatternSum::map(Term& t, Mat from, Mat to) {
   PetscInt cstart = 0, cend = 0;
   CHK(MatGetOwnershipRangeColumn(to, &cstart, &cend));
   const Rows fdr(fd), for_(fo), tdr(td), tor(to_o);
-  t.pos.assign(fdr.nnz() + for_.nnz(), 0);
+  t.same.assign(fdr.n, 0);
+  t.pos.clear();
   std::vector<std::pair<PetscInt, PetscInt>> row;  // (global column, position code) of to's row
-  PetscInt off = fdr.nnz();
   for (PetscInt i = 0; i < fdr.n; ++i) {
+    const PetscInt nfd = fdr.ia[i + 1] - fdr.ia[i], nfo = fo ? for_.ia[i + 1] - for_.ia[i] : 0;
+    const PetscInt ntd = tdr.ia[i + 1] - tdr.ia[i], nto = to_o ? tor.ia[i + 1] - tor.ia[i] : 0;
+    const bool same_d = nfd == ntd, same_o = nfo == nto;
+    t.same[i] = static_cast<unsigned char>((same_d ? 1 : 0) | (same_o ? 2 : 0));
+    if (same_d && same_o) continue;
     row.clear();
     for (PetscInt k = tdr.ia[i]; k < tdr.ia[i + 1]; ++k) row.emplace_back(cstart + tdr.ja[k], k);
     if (to_o)
@@ -70,10 +75,12 @@ bool PatternSum::map(Term& t, Mat from, Mat to) {
       if (it == row.end() || it->first != col) throw std::logic_error("PatternSum: a term's entry is outside the sum's pattern");
       return it->second;
     };
-    for (PetscInt k = fdr.ia[i]; k < fdr.ia[i + 1]; ++k) t.pos[k] = find(cstart + fdr.ja[k]);
-    if (fo)
-      for (PetscInt k = for_.ia[i]; k < for_.ia[i + 1]; ++k) t.pos[off + k] = find(fg[for_.ja[k]]);
+    if (!same_d)
+      for (PetscInt k = fdr.ia[i]; k < fdr.ia[i + 1]; ++k) t.pos.push_back(find(cstart + fdr.ja[k]));
+    if (!same_o)
+      for (PetscInt k = for_.ia[i]; k < for_.ia[i + 1]; ++k) t.pos.push_back(find(fg[for_.ja[k]]));
   }
+  t.pos.shrink_to_fit();
   t.m = from;
   t.nonzero_state = nz;
   ++maps_built_;
@@ -91,33 +98,38 @@ bool PatternSum::sum(Mat a, Mat b, Mat to) {
   Mat td, to_o;
   const PetscInt* tg = nullptr;
   parts(to, td, to_o, tg);
-  PetscInt nd = 0, no = 0;
-  {
-    const Rows tdr(td), tor(to_o);
-    nd = tdr.nnz();
-    no = tor.nnz();
-  }
+  const Rows tdr(td), tor(to_o);
   PetscScalar *vd = nullptr, *vo = nullptr;
   CHK(MatSeqAIJGetArray(td, &vd));
   if (to_o) CHK(MatSeqAIJGetArray(to_o, &vo));
-  std::fill(vd, vd + nd, 0.0);
-  if (vo) std::fill(vo, vo + no, 0.0);
+  std::fill(vd, vd + tdr.nnz(), 0.0);
+  if (vo) std::fill(vo, vo + tor.nnz(), 0.0);
+  // Each sum entry is 0 + a + b, in that order, whichever way the entries are found.
   for (Term* t : {&a_, &b_}) {
     Mat fd, fo;
     const PetscInt* fg = nullptr;
     parts(t->m, fd, fo, fg);
+    const Rows fdr(fd), for_(fo);
     const PetscScalar *fv = nullptr, *fw = nullptr;
     CHK(MatSeqAIJGetArrayRead(fd, &fv));
     if (fo) CHK(MatSeqAIJGetArrayRead(fo, &fw));
-    PetscInt nfd = 0, nfo = 0;
-    {
-      const Rows r(fd), s(fo);
-      nfd = r.nnz();
-      nfo = s.nnz();
-    }
+    auto add = [&](PetscInt p, PetscScalar v) { (p >= 0 ? vd[p] : vo[-1 - p]) += v; };
     const PetscInt* p = t->pos.data();
-    for (PetscInt k = 0; k < nfd; ++k) (p[k] >= 0 ? vd[p[k]] : vo[-1 - p[k]]) += fv[k];
-    for (PetscInt k = 0; k < nfo; ++k) (p[nfd + k] >= 0 ? vd[p[nfd + k]] : vo[-1 - p[nfd + k]]) += fw[k];
+    for (PetscInt i = 0; i < fdr.n; ++i) {
+      if (t->same[i] & 1) {
+        PetscScalar* out = vd + tdr.ia[i];
+        for (PetscInt k = fdr.ia[i]; k < fdr.ia[i + 1]; ++k) *out++ += fv[k];
+      } else {
+        for (PetscInt k = fdr.ia[i]; k < fdr.ia[i + 1]; ++k) add(*p++, fv[k]);
+      }
+      if (!fo) continue;
+      if (t->same[i] & 2) {
+        PetscScalar* out = vo + tor.ia[i];
+        for (PetscInt k = for_.ia[i]; k < for_.ia[i + 1]; ++k) *out++ += fw[k];
+      } else {
+        for (PetscInt k = for_.ia[i]; k < for_.ia[i + 1]; ++k) add(*p++, fw[k]);
+      }
+    }
     CHK(MatSeqAIJRestoreArrayRead(fd, &fv));
     if (fo) CHK(MatSeqAIJRestoreArrayRead(fo, &fw));
   }

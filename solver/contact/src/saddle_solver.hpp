@@ -64,9 +64,6 @@ private:
   const ContactOptions* opt_ = nullptr;
   Vec rhs_ = nullptr, sol_ = nullptr, wr_ = nullptr;
   Mat WB_ = nullptr, G_ = nullptr, Kg_ = nullptr, J_ = nullptr, Jaij_ = nullptr;
-  // The preconditioner's copy of K_gamma and its block matrix: updated at every solve, so that the
-  // nest's state tells the field split when to set up (a new active set, a degraded rate).
-  Mat Pg_ = nullptr, Jp_ = nullptr;
   Mat A_seen_ = nullptr;
   KSP ksp_ = nullptr;
   bool configured_ = false;  // KSPSetFromOptions done since the last reset
