@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
+#include <thread>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -238,11 +240,27 @@ public:
         if (blk.type == ElementType::Tetrahedron) input.emplace_back(blk.nodes);
       parent_.emplace(X_, std::move(input));
     }
+    // The incidences on a second thread while this one computes the reaches and bins the nodes
+    // (two cores; neither reads what the other writes, so the result does not depend on timing).
     reach_.assign(X_.size(), 0.0);
-    tets_at_.build(X_.size(), T_);
-    tris_at_.build(X_.size(), F_);
-    for (const auto& t : T_) raise_reach(t);
-    grid_.build(X_, reach_);
+    std::exception_ptr failed;
+    std::thread incidences([&] {
+      try {
+        tets_at_.build(X_.size(), T_);
+        tris_at_.build(X_.size(), F_);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    try {
+      for (const auto& t : T_) raise_reach(t);  // grid_ is empty: only reach_ is raised
+      grid_.build(X_, reach_);
+    } catch (...) {
+      incidences.join();
+      throw;
+    }
+    incidences.join();
+    if (failed) std::rethrow_exception(failed);
   }
 
   std::size_t tetrahedra() const { return T_.size(); }
