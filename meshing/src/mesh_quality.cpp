@@ -5,6 +5,10 @@
 #include <limits>
 #include <thread>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <fmt/format.h>
 
 #include "ugs/meshing/surface_stack.hpp"
@@ -12,11 +16,6 @@
 namespace ugs {
 
 namespace {
-
-using V3 = std::array<double, 3>;
-V3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 cross(const V3& u, const V3& v) { return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}; }
-double dot(const V3& u, const V3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 
 struct Partial {
   double vmin = std::numeric_limits<double>::infinity(), vmax = -std::numeric_limits<double>::infinity();
@@ -27,47 +26,86 @@ struct Partial {
 
 // The cosine of the smallest dihedral angle (clamped to [-1, 1]); 1 for a flat or degenerate tetrahedron.
 // Face i is the one opposite vertex i, spanned from its first vertex q0 = p[(i+1)%4] by q1 - q0 and
-// q2 - q0 (q1 = p[(i+2)%4], q2 = p[(i+3)%4]); its normal is turned away from vertex i (all outward
-// or all inward) and made unit. The dihedral angle at an edge is pi minus the angle between the two
-// normals. Written out for the four faces (a loop over pointers with indices mod 4 took 400
-// instructions per tetrahedron, 13 % of ugs-meshgen's thesis bench in the report alone): the same
-// operations in the same order, so the same bits. A flip is kept as a sign, not applied: negation is
-// exact and rounding symmetric, so -dot(s_i n_i, s_j n_j) = -(s_i s_j) dot(n_i, n_j) bit for bit.
+// q2 - q0 (q1 = p[(i+2)%4], q2 = p[(i+3)%4]); its normal cross(q1 - q0, q2 - q0) is turned away from
+// vertex i (all outward or all inward) and made unit. The dihedral angle at an edge is pi minus the
+// angle between the two normals. The loop over the faces this replaces took 400 instructions per
+// tetrahedron (13 % of ugs-meshgen's thesis bench in the report alone, as much again in the cut's
+// band); the same operations in the same order give the same bits, here two faces at a time in
+// SSE2's two lanes (faces 0 and 1, then 2 and 3: q0 = (b, c) then (d, a), and so on).
+#if defined(__SSE2__)
 double worst_dihedral_cos(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  struct Normal {
-    double x, y, z;
-    bool flip;
+  // Per coordinate k: the pairs (a, b), (b, c), (c, d), (d, a) of the four vertices.
+  __m128d ab[3], bc[3], cd[3], da[3];
+  for (int k = 0; k < 3; ++k) {
+    ab[k] = _mm_set_pd(b[k], a[k]);  // lane 0 first: (a, b)
+    bc[k] = _mm_set_pd(c[k], b[k]);
+    cd[k] = _mm_set_pd(d[k], c[k]);
+    da[k] = _mm_set_pd(a[k], d[k]);
+  }
+  const __m128d sign = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+  // Unit normals of two faces (q0, q1, q2 per lane, r the opposite vertex); false when one is degenerate.
+  auto normals = [&](const __m128d* q0, const __m128d* q1, const __m128d* q2, const __m128d* r, __m128d* n) {
+    __m128d u[3], v[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = _mm_sub_pd(q1[k], q0[k]);
+      v[k] = _mm_sub_pd(q2[k], q0[k]);
+      w[k] = _mm_sub_pd(r[k], q0[k]);
+    }
+    n[0] = _mm_sub_pd(_mm_mul_pd(u[1], v[2]), _mm_mul_pd(u[2], v[1]));
+    n[1] = _mm_sub_pd(_mm_mul_pd(u[2], v[0]), _mm_mul_pd(u[0], v[2]));
+    n[2] = _mm_sub_pd(_mm_mul_pd(u[0], v[1]), _mm_mul_pd(u[1], v[0]));
+    const __m128d towards = _mm_add_pd(_mm_add_pd(_mm_mul_pd(n[0], w[0]), _mm_mul_pd(n[1], w[1])), _mm_mul_pd(n[2], w[2]));
+    const __m128d flip = _mm_and_pd(_mm_cmpgt_pd(towards, zero), sign);  // negate where it points towards r
+    for (int k = 0; k < 3; ++k) n[k] = _mm_xor_pd(n[k], flip);
+    const __m128d len =
+        _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(n[0], n[0]), _mm_mul_pd(n[1], n[1])), _mm_mul_pd(n[2], n[2])));
+    for (int k = 0; k < 3; ++k) n[k] = _mm_div_pd(n[k], len);
+    return _mm_movemask_pd(_mm_cmpgt_pd(len, zero)) == 3;  // !(len > 0) in a lane: degenerate (or NaN)
   };
-  // cross(q1 - q0, q2 - q0), turned away from r (flip when it points towards r), unit.
-  auto face = [](const Point3& q0, const Point3& q1, const Point3& q2, const Point3& r, Normal& n) {
-    const double ux = q1[0] - q0[0], uy = q1[1] - q0[1], uz = q1[2] - q0[2];
-    const double vx = q2[0] - q0[0], vy = q2[1] - q0[1], vz = q2[2] - q0[2];
-    const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
-    const double rx = r[0] - q0[0], ry = r[1] - q0[1], rz = r[2] - q0[2];
-    n.flip = x * rx + y * ry + z * rz > 0;
-    const double len = std::sqrt(x * x + y * y + z * z);
-    n.x = x / len;
-    n.y = y / len;
-    n.z = z / len;
-    return len > 0;
+  __m128d n01[3], n23[3];
+  const bool ok01 = normals(bc, cd, da, ab, n01);  // faces 0 (b, c, d; a) and 1 (c, d, a; b)
+  const bool ok23 = normals(da, ab, bc, cd, n23);  // faces 2 (d, a, b; c) and 3 (a, b, c; d)
+  if (!(ok01 && ok23)) return 1.0;
+  auto dot = [](const __m128d* x, const __m128d* y) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(x[0], y[0]), _mm_mul_pd(x[1], y[1])), _mm_mul_pd(x[2], y[2]));
   };
-  Normal n[4];
-  const bool ok0 = face(b, c, d, a, n[0]), ok1 = face(c, d, a, b, n[1]);
-  const bool ok2 = face(d, a, b, c, n[2]), ok3 = face(a, b, c, d, n[3]);
-  if (!(ok0 && ok1 && ok2 && ok3)) return 1.0;
-  auto minus_dot = [&](int i, int j) {
-    const double p = n[i].x * n[j].x + n[i].y * n[j].y + n[i].z * n[j].z;
-    return n[i].flip == n[j].flip ? -p : p;
-  };
+  __m128d even[3], odd[3], n32[3];
+  for (int k = 0; k < 3; ++k) {
+    even[k] = _mm_unpacklo_pd(n01[k], n23[k]);  // (n0, n2)
+    odd[k] = _mm_unpackhi_pd(n01[k], n23[k]);   // (n1, n3)
+    n32[k] = _mm_shuffle_pd(n23[k], n23[k], 1);  // (n3, n2)
+  }
+  double p[6];  // n_i . n_j for (0,1), (2,3), (0,2), (1,3), (0,3), (1,2)
+  _mm_storeu_pd(p, dot(even, odd));
+  _mm_storeu_pd(p + 2, dot(n01, n23));
+  _mm_storeu_pd(p + 4, dot(n01, n32));
   double worst = -1;
-  worst = std::max(worst, minus_dot(0, 1));
-  worst = std::max(worst, minus_dot(0, 2));
-  worst = std::max(worst, minus_dot(0, 3));
-  worst = std::max(worst, minus_dot(1, 2));
-  worst = std::max(worst, minus_dot(1, 3));
-  worst = std::max(worst, minus_dot(2, 3));
+  for (int i : {0, 2, 4, 5, 3, 1}) worst = std::max(worst, -p[i]);  // in the pairs' order (0,1) .. (2,3)
   return std::clamp(worst, -1.0, 1.0);
 }
+#else
+using V3 = std::array<double, 3>;
+V3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(const V3& u, const V3& v) { return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}; }
+double dot(const V3& u, const V3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
+
+double worst_dihedral_cos(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const Point3* p[4] = {&a, &b, &c, &d};
+  V3 n[4];
+  for (int i = 0; i < 4; ++i) {
+    const Point3& q0 = *p[(i + 1) % 4];
+    n[i] = cross(sub(*p[(i + 2) % 4], q0), sub(*p[(i + 3) % 4], q0));
+    if (dot(n[i], sub(*p[i], q0)) > 0) n[i] = {-n[i][0], -n[i][1], -n[i][2]};
+    const double len = std::sqrt(dot(n[i], n[i]));
+    if (!(len > 0)) return 1.0;
+    for (auto& x : n[i]) x /= len;
+  }
+  double worst = -1;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) worst = std::max(worst, -dot(n[i], n[j]));
+  return std::clamp(worst, -1.0, 1.0);
+}
+#endif
 
 double cos_to_deg(double c) { return std::acos(c) * 180.0 / M_PI; }
 
