@@ -387,7 +387,8 @@ double loop_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, 
 }
 
 // Random tetrahedra of both orientations at the thesis' coordinates (UTM metres, 1e-3 .. 1e4 m
-// apart, slivers, flat and repeated nodes): the written-out angle equals the loop's bit for bit.
+// apart, slivers, flat and repeated nodes): the angle (four faces at a time with AVX, two with
+// SSE2) equals the loop's bit for bit.
 TEST(Quality, DihedralAngleBitForBitAsTheLoop) {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -406,6 +407,10 @@ TEST(Quality, DihedralAngleBitForBitAsTheLoop) {
     const double got = min_dihedral_angle_deg(x[0], x[1], x[2], x[3]);
     const double want = loop_min_dihedral_deg(x[0], x[1], x[2], x[3]);
     ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << "tetrahedron " << k << ": " << got << " vs " << want;
+    for (int lanes : {2, 4}) {  // both kernels, whichever the processor makes the default
+      const double other = detail::min_dihedral_angle_deg_lanes(lanes, x[0], x[1], x[2], x[3]);
+      ASSERT_EQ(std::memcmp(&other, &want, sizeof other), 0) << lanes << " lanes, tetrahedron " << k;
+    }
     ++checked;
     slivers += got > 0 && got < 1;
     degenerate += got == 0;
