@@ -1,8 +1,11 @@
 #include "ugs/formats/mesh.hpp"
 
 #include <algorithm>
+#include <array>
+#include <exception>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 namespace ugs {
 
@@ -160,49 +163,100 @@ std::unordered_map<std::uint64_t, std::uint32_t> Mesh::node_index_by_tag() const
   return m;
 }
 
+namespace {
+
+// Widens `box` (lo xyz, hi xyz) by the nodes of block b. `used`: scratch, one flag per node.
+void widen_box(const std::vector<Point3>& nodes, const ElementBlock& b, std::array<double, 6>& box, std::vector<char>& used) {
+  // In locals (written through the entity, every step was a load and a store: the box could alias
+  // the nodes). A large block is swept in node order (its elements' order visited the nodes at
+  // random, 3 % of ugs-meshgen's thesis bench in cache misses): the same minimum and maximum,
+  // unless one is a zero that may come as +0 or -0, where the first met wins: then again in
+  // element order.
+  const double lo0[3] = {box[0], box[1], box[2]}, hi0[3] = {box[3], box[4], box[5]};
+  double lo[3] = {lo0[0], lo0[1], lo0[2]}, hi[3] = {hi0[0], hi0[1], hi0[2]};
+  auto add = [&](const Point3& x) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], x[k]);
+      hi[k] = std::max(hi[k], x[k]);
+    }
+  };
+  const auto [first, last] = std::minmax_element(b.nodes.begin(), b.nodes.end());
+  bool swept = false;
+  if (8 * b.nodes.size() >= *last - *first + 1 && *last < nodes.size()) {
+    used.assign(nodes.size(), 0);
+    for (auto n : b.nodes) used[n] = 1;
+    for (std::size_t n = *first; n <= *last; ++n)
+      if (used[n]) add(nodes[n]);
+    swept = true;
+    for (int k = 0; k < 3; ++k) swept = swept && lo[k] != 0 && hi[k] != 0;
+  }
+  if (!swept) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = lo0[k];
+      hi[k] = hi0[k];
+    }
+    for (auto n : b.nodes) add(nodes[n]);
+  }
+  for (int k = 0; k < 3; ++k) {
+    box[k] = lo[k];
+    box[k + 3] = hi[k];
+  }
+}
+
+}  // namespace
+
 void Mesh::update_entity_bboxes() {
   constexpr double inf = std::numeric_limits<double>::infinity();
   for (auto& e : entities) e.bbox = {inf, inf, inf, -inf, -inf, -inf};
-  std::vector<char> used;  // per node, for the blocks swept in node order
+  // Each entity's box from its blocks in block order (the entity is the last one of the block's
+  // dimension and tag); the entities are independent of each other, so a large mesh's are shared
+  // between two threads (a fixed split by size: the boxes do not depend on timing).
+  std::vector<std::vector<const ElementBlock*>> of(entities.size());
+  std::vector<std::size_t> refs(entities.size(), 0);
+  std::size_t total = 0;
   for (const auto& b : blocks) {
-    Entity* e = nullptr;
-    for (auto& f : entities)
-      if (f.dim == b.entity_dim && f.tag == b.entity_tag) e = &f;
-    if (!e || b.nodes.empty()) continue;
-    // In locals (written through e, every step was a load and a store: the box could alias the
-    // nodes). A large block is swept in node order (its elements' order visited the nodes at
-    // random, 3 % of ugs-meshgen's thesis bench in cache misses): the same minimum and maximum,
-    // unless one is a zero that may come as +0 or -0, where the first met wins: then again in
-    // element order.
-    const double lo0[3] = {e->bbox[0], e->bbox[1], e->bbox[2]}, hi0[3] = {e->bbox[3], e->bbox[4], e->bbox[5]};
-    double lo[3] = {lo0[0], lo0[1], lo0[2]}, hi[3] = {hi0[0], hi0[1], hi0[2]};
-    auto add = [&](const Point3& x) {
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], x[k]);
-        hi[k] = std::max(hi[k], x[k]);
+    std::size_t ei = entities.size();
+    for (std::size_t f = 0; f < entities.size(); ++f)
+      if (entities[f].dim == b.entity_dim && entities[f].tag == b.entity_tag) ei = f;
+    if (ei == entities.size() || b.nodes.empty()) continue;
+    of[ei].push_back(&b);
+    refs[ei] += b.nodes.size();
+    total += b.nodes.size();
+  }
+  auto run = [&](const std::vector<std::size_t>& mine) {
+    std::vector<char> used;  // per node, for the blocks swept in node order
+    for (auto ei : mine)
+      for (const ElementBlock* b : of[ei]) widen_box(nodes, *b, entities[ei].bbox, used);
+  };
+  std::vector<std::size_t> order(entities.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (total < (std::size_t{1} << 22) || std::thread::hardware_concurrency() < 2) {
+    run(order);
+  } else {
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return refs[x] > refs[y]; });
+    std::vector<std::size_t> part[2];
+    std::size_t load[2] = {0, 0};
+    for (auto ei : order) {
+      const int t = load[1] < load[0] ? 1 : 0;
+      part[t].push_back(ei);
+      load[t] += refs[ei];
+    }
+    std::exception_ptr failed;
+    std::thread other([&] {
+      try {
+        run(part[1]);
+      } catch (...) {
+        failed = std::current_exception();
       }
-    };
-    const auto [first, last] = std::minmax_element(b.nodes.begin(), b.nodes.end());
-    bool swept = false;
-    if (8 * b.nodes.size() >= *last - *first + 1 && *last < nodes.size()) {
-      used.assign(nodes.size(), 0);
-      for (auto n : b.nodes) used[n] = 1;
-      for (std::size_t n = *first; n <= *last; ++n)
-        if (used[n]) add(nodes[n]);
-      swept = true;
-      for (int k = 0; k < 3; ++k) swept = swept && lo[k] != 0 && hi[k] != 0;
+    });
+    try {
+      run(part[0]);
+    } catch (...) {
+      other.join();
+      throw;
     }
-    if (!swept) {
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = lo0[k];
-        hi[k] = hi0[k];
-      }
-      for (auto n : b.nodes) add(nodes[n]);
-    }
-    for (int k = 0; k < 3; ++k) {
-      e->bbox[k] = lo[k];
-      e->bbox[k + 3] = hi[k];
-    }
+    other.join();
+    if (failed) std::rethrow_exception(failed);
   }
   for (auto& e : entities)
     if (e.bbox[0] > e.bbox[3]) e.bbox = {};

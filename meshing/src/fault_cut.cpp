@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
+#include <thread>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -238,10 +240,26 @@ public:
         if (blk.type == ElementType::Tetrahedron) input.emplace_back(blk.nodes);
       parent_.emplace(X_, std::move(input));
     }
+    // Two threads (two cores): the second builds the incidences and the reaches of the last
+    // tetrahedra into an array of its own, this one the reaches of the first; then the larger of
+    // the two per node (a maximum: the same whatever the split or the timing) and the node grid.
     reach_.assign(X_.size(), 0.0);
-    tets_at_.build(X_.size(), T_);
-    tris_at_.build(X_.size(), F_);
-    for (const auto& t : T_) raise_reach(t);
+    std::vector<double> reach_last(X_.size(), 0.0);
+    const std::size_t split = T_.size() * 5 / 8;
+    std::exception_ptr failed;
+    std::thread other([&] {
+      try {
+        tets_at_.build(X_.size(), T_);
+        tris_at_.build(X_.size(), F_);
+        for (std::size_t i = split; i < T_.size(); ++i) raise_reach(T_[i], reach_last);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    for (std::size_t i = 0; i < split; ++i) raise_reach(T_[i], reach_);
+    other.join();
+    if (failed) std::rethrow_exception(failed);
+    for (std::size_t v = 0; v < X_.size(); ++v) reach_[v] = std::max(reach_[v], reach_last[v]);
     grid_.build(X_, reach_);
   }
 
@@ -888,6 +906,11 @@ private:
 
   // reach_ of a tetrahedron's nodes: at least its diameter (one square root per tetrahedron).
   void raise_reach(const std::array<std::uint32_t, 4>& t) {
+    raise_reach(t, reach_);
+    for (auto v : t) grid_.raise(v, reach_[v]);
+  }
+  // The same into `reach` only (the constructor's threads, before grid_ is built).
+  void raise_reach(const std::array<std::uint32_t, 4>& t, std::vector<double>& reach) const {
     double d2 = 0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) {
@@ -895,10 +918,7 @@ private:
         d2 = std::max(d2, dot(e, e));
       }
     const double d = std::sqrt(d2);
-    for (auto v : t) {
-      reach_[v] = std::max(reach_[v], d);
-      grid_.raise(v, reach_[v]);
-    }
+    for (auto v : t) reach[v] = std::max(reach[v], d);
   }
 
   void apply(const EdgeMap& marked) {

@@ -27,7 +27,12 @@ namespace ugs::geo {
 
 void gdal_init() {
   static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
+  std::call_once(once, [] {
+    GDALAllRegister();
+    // The block cache's size is read from the configuration on its first use, unguarded: read
+    // here once, so that rasters sampled on two threads (prepare_model) do not both set it.
+    GDALGetCacheMax64();
+  });
 }
 
 QuietGdal::QuietGdal() {

@@ -292,6 +292,19 @@ TEST_F(MeshgenCli, BadSurfaces) {
              {"surface 'Top C'", "do not cover", "convex hull", "x="});
   expect_bad(replace(s, "picks = \"top_c.csv\"", "picks = \"top_c.csv\"\nconstant = 3.0"),
              {"surface 'Top C'", "exactly one of raster, constant or picks"});
+  // Two bad surfaces (sampled on different threads): the first in the file is the one reported.
+  for (const auto& [first, second] : {std::pair{"Base A", "Top C"}, std::pair{"Top C", "Base C"}}) {
+    std::string two = s;
+    for (const char* name : {first, second}) {
+      if (std::string(name) == "Base A") two = replace(two, "raster = \"base_a.tif\"", "raster = \"missing.tif\"");
+      if (std::string(name) == "Top C") two = replace(two, "picks = \"top_c.csv\"", "picks = \"few.csv\"");
+      if (std::string(name) == "Base C") two = replace(two, "raster = \"base_c.tif\"", "raster = \"short.tif\"");
+    }
+    expect_bad(two, {fmt::format("surface '{}'", first)});  // writes bad.toml
+    const auto r = test::run(meshgen() + " " + path("plan.msh").string() + " --strata " + path("bad.toml").string() + " -o " +
+                             path("bad-out.msh").string());
+    EXPECT_EQ(r.err.find(fmt::format("surface '{}'", second)), std::string::npos) << r.err;
+  }
 }
 
 TEST_F(MeshgenCli, BadUnitsAndMaterials) {

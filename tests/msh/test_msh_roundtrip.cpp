@@ -5,6 +5,9 @@
 
 #include <fmt/format.h>
 
+#include <array>
+#include <cmath>
+#include <cstring>
 #include <limits>
 #include <regex>
 
@@ -245,4 +248,58 @@ TEST_F(GmshSdk, WeReadWhatGmshWrites) {
     EXPECT_NEAR(vol, 6.0, 1e-9);
   }
   fs::remove_all(dir);
+}
+
+// Entity boxes of a mesh large enough for the two-thread split (over 4 million node references):
+// each entity's box equals the one met in element order, bit for bit (signed zeros too: bounds of
+// +0 and -0 where the first met wins), with two blocks of one entity and an entity without elements.
+TEST(EntityBoxes, LargeMeshEqualsTheElementOrderBox) {
+  Mesh m;
+  std::uint64_t state = 23;
+  auto next = [&] {  // a fixed sequence (xorshift), no library generator: the same on every platform
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  };
+  for (int i = 0; i < 200000; ++i) {
+    Point3 x{static_cast<double>(next() % 100000) - 50000, static_cast<double>(next() % 100000),
+             -static_cast<double>(next() % 5000)};
+    if (i % 1000 == 7) x[1] = 0.0;    // y bounds of +0 ...
+    if (i % 1000 == 501) x[1] = -0.0;  // ... and -0
+    m.add_node(x);
+  }
+  for (int tag = 1; tag <= 4; ++tag) m.entities.push_back({3, tag, {}, {}});
+  const int block_entity[5] = {1, 2, 3, 1, 2};  // entity 4 has none; 1 and 2 have two blocks each
+  std::size_t refs = 0;
+  for (int e : block_entity) {
+    ElementBlock b;
+    b.entity_dim = 3;
+    b.entity_tag = e;
+    b.type = ElementType::Tetrahedron;
+    const std::size_t n = e == 3 ? 400000 : 200000;
+    for (std::size_t i = 0; i < 4 * n; ++i) b.nodes.push_back(static_cast<std::uint32_t>(next() % (e == 2 ? 1000 : 200000)));
+    b.tags.resize(n);
+    refs += b.nodes.size();
+    m.blocks.push_back(std::move(b));
+  }
+  ASSERT_GT(refs, std::size_t{1} << 22);
+  m.update_entity_bboxes();
+  for (int tag = 1; tag <= 4; ++tag) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    std::array<double, 6> want{inf, inf, inf, -inf, -inf, -inf};
+    for (const auto& b : m.blocks)
+      if (b.entity_tag == tag)
+        for (auto n : b.nodes)
+          for (int k = 0; k < 3; ++k) {
+            want[k] = std::min(want[k], m.nodes[n][k]);
+            want[k + 3] = std::max(want[k + 3], m.nodes[n][k]);
+          }
+    if (want[0] > want[3]) want = {};
+    const auto& got = m.entities[static_cast<std::size_t>(tag - 1)].bbox;
+    EXPECT_EQ(std::memcmp(got.data(), want.data(), sizeof want), 0)
+        << "entity " << tag << ": " << fmt::format("{}", fmt::join(got, " ")) << " vs " << fmt::format("{}", fmt::join(want, " "));
+  }
+  EXPECT_EQ(m.entities[3].bbox, (std::array<double, 6>{}));
+  EXPECT_EQ(m.entities[1].bbox[1], 0.0);  // entity 2's nodes 0 .. 999 hold the +0 (node 7) and -0 (node 501)
 }

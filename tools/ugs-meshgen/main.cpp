@@ -13,6 +13,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
@@ -148,19 +150,39 @@ int main(int argc, char** argv) {
                           cut.band_below_bound);
     }
 
-    const ugs::QualityReport q = ugs::mesh_quality(mesh, opt.small_angle);
-    t = clock.lap();
-    total += t;
-    ugs::cli::detail("quality measured in {:.3f} s", t);
+    // The quality report is measured on other threads while the mesh is written to the output's
+    // temporary file (two cores: the writer is one thread); an inverted mesh is then not committed,
+    // so it is never written. To stdout, whose bytes cannot be taken back, it is measured first.
+    ugs::OutputFile out(tool.output());
+    const auto encoding = opt.ascii ? ugs::MshEncoding::Ascii : ugs::MshEncoding::Binary;
+    ugs::QualityReport q;
+    if (out.is_stdout()) {
+      q = ugs::mesh_quality(mesh, opt.small_angle);
+    } else {
+      std::exception_ptr failed;
+      std::thread measure([&] {
+        try {
+          q = ugs::mesh_quality(mesh, opt.small_angle);
+        } catch (...) {
+          failed = std::current_exception();
+        }
+      });
+      try {
+        ugs::write_msh(mesh, out, encoding);
+      } catch (...) {
+        measure.join();
+        throw;
+      }
+      measure.join();
+      if (failed) std::rethrow_exception(failed);
+    }
     if (q.inverted > 0)  // cannot happen with the split rule on a valid plan; never write such a mesh
       throw ugs::ComputeError(std::to_string(q.inverted) + " tetrahedra are inverted or flat; no mesh written");
-
-    ugs::OutputFile out(tool.output());
-    ugs::write_msh(mesh, out, opt.ascii ? ugs::MshEncoding::Ascii : ugs::MshEncoding::Binary);
+    if (out.is_stdout()) ugs::write_msh(mesh, out, encoding);
     out.commit();
     t = clock.lap();
     total += t;
-    ugs::cli::detail("written in {:.3f} s", t);
+    ugs::cli::detail("quality measured and mesh written in {:.3f} s", t);
 
     std::string report = ugs::format_quality(q);
     std::size_t start = 0;

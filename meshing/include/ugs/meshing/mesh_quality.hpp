@@ -33,6 +33,11 @@ struct QualityReport {
 
 // Smallest dihedral angle of a tetrahedron, in degrees (0 for a flat one).
 double min_dihedral_angle_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+namespace detail {
+// The same computed four faces at a time (lanes 4: AVX, where the processor has it) or two at a
+// time (lanes 2: SSE2; the plain loop without it). Each gives min_dihedral_angle_deg's bits: for tests.
+double min_dihedral_angle_deg_lanes(int lanes, const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+}  // namespace detail
 
 QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg = 5.0);
 // Human-readable lines (MPa/mm are not involved; volumes in m3 and km3).
