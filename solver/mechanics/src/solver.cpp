@@ -155,7 +155,7 @@ std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
     UGS_PETSC(VecRestoreArrayRead(ul, &ua));
     UGS_PETSC(VecGhostRestoreLocalForm(s.u, &ul));
   }
-  std::vector<double> out = s.gather_cells_k(values, k);
+  std::vector<double> out = s.gather_cells_k(std::move(values), k);
   PetscLogEventEnd(events().gather, 0, 0, 0, 0);
   return out;
 }
@@ -191,7 +191,7 @@ std::vector<double> MechanicsSolver::gather_state_field(StateField field) {
         break;
     }
   }
-  return s.gather_cells_k(values, k);
+  return s.gather_cells_k(std::move(values), k);
 }
 
 void MechanicsSolver::restore_state(const SavedState& st) {
