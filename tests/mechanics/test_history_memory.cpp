@@ -15,6 +15,8 @@
 #include "ugs/mechanics/solver.hpp"
 #include "ugs/meshing/box_mesh.hpp"
 
+#include "case_builders.hpp"
+
 using namespace ugs;
 
 namespace {
@@ -30,15 +32,7 @@ mech::Model block_model(double L, int n) {
   const Mesh mesh = make_box_mesh(spec);
   CaseFile cs;
   cs.path = "test.toml";
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "test";
-  m.law = MaterialLaw::Hypoplastic;
-  m.nu_z = 0.3;
-  m.Eh_over_Ez = 3.0;
-  m.nuh_over_nuz = 0.2;
-  m.c_R = 3.0;
-  cs.materials.push_back(m);
+  cs.materials.push_back(test::hypoplastic_material("rock", "test"));
   cs.fixed_boundaries = {"bottom"};
   cs.roller_boundaries = {"west", "east", "south", "north"};
   return mech::build_model(mesh, cs);

@@ -107,15 +107,7 @@ TEST_P(V1, OedometerPath) {
   spec.z = linspace(-d20 - H / 2, -d20 + H / 2, nz);
   Mesh mesh = make_box_mesh(spec);
   CaseFile cs = base_case();
-  MaterialSpec m;
-  m.name = "rock";
-  m.where = "test";
-  m.law = MaterialLaw::Hypoplastic;
-  m.nu_z = 0.3;
-  m.Eh_over_Ez = 3.0;
-  m.nuh_over_nuz = 0.2;
-  m.c_R = 3.0;
-  cs.materials.push_back(m);
+  cs.materials.push_back(test::hypoplastic_material("rock", "test"));
   cs.fixed_boundaries = {"bottom"};
   cs.roller_boundaries = {"west", "east", "south", "north"};
   cs.inversion_rule = rule;

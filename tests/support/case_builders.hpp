@@ -22,6 +22,20 @@ inline MaterialSpec linear_material(const std::string& name, const std::string& 
   return m;
 }
 
+// A hypo-plastic [[material]] with the thesis' anisotropy (Table 4.3: nu_z 0.3, E_h/E_z 3,
+// nu_h/nu_z 0.2) and c_R 3.
+inline MaterialSpec hypoplastic_material(const std::string& name, const std::string& where) {
+  MaterialSpec m;
+  m.name = name;
+  m.where = where;
+  m.law = MaterialLaw::Hypoplastic;
+  m.nu_z = 0.3;
+  m.Eh_over_Ez = 3.0;
+  m.nuh_over_nuz = 0.2;
+  m.c_R = 3.0;
+  return m;
+}
+
 // A [[fault]] with its Mohr-Coulomb strength.
 inline FaultSpec fault_spec(const std::string& name, const std::string& where, double cohesion_Pa, double friction_deg) {
   FaultSpec f;
