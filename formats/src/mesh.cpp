@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <exception>
 #include <limits>
 #include <stdexcept>
 #include <thread>
+
+#include "ugs/formats/run_beside.hpp"
 
 namespace ugs {
 
@@ -241,22 +242,7 @@ void Mesh::update_entity_bboxes() {
       part[t].push_back(ei);
       load[t] += refs[ei];
     }
-    std::exception_ptr failed;
-    std::thread other([&] {
-      try {
-        run(part[1]);
-      } catch (...) {
-        failed = std::current_exception();
-      }
-    });
-    try {
-      run(part[0]);
-    } catch (...) {
-      other.join();
-      throw;
-    }
-    other.join();
-    if (failed) std::rethrow_exception(failed);
+    run_beside([&] { run(part[1]); }, [&] { run(part[0]); });
   }
   for (auto& e : entities)
     if (e.bbox[0] > e.bbox[3]) e.bbox = {};

@@ -4,12 +4,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
-#include <thread>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -17,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/formats/run_beside.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
 #include "cut_band_improvement.hpp"
 #include "node_grid.hpp"
@@ -246,19 +245,15 @@ public:
     reach_.assign(X_.size(), 0.0);
     std::vector<double> reach_last(X_.size(), 0.0);
     const std::size_t split = T_.size() * 5 / 8;
-    std::exception_ptr failed;
-    std::thread other([&] {
-      try {
-        tets_at_.build(X_.size(), T_);
-        tris_at_.build(X_.size(), F_);
-        for (std::size_t i = split; i < T_.size(); ++i) raise_reach(T_[i], reach_last);
-      } catch (...) {
-        failed = std::current_exception();
-      }
-    });
-    for (std::size_t i = 0; i < split; ++i) raise_reach(T_[i], reach_);
-    other.join();
-    if (failed) std::rethrow_exception(failed);
+    run_beside(
+        [&] {
+          tets_at_.build(X_.size(), T_);
+          tris_at_.build(X_.size(), F_);
+          for (std::size_t i = split; i < T_.size(); ++i) raise_reach(T_[i], reach_last);
+        },
+        [&] {
+          for (std::size_t i = 0; i < split; ++i) raise_reach(T_[i], reach_);
+        });
     for (std::size_t v = 0; v < X_.size(); ++v) reach_[v] = std::max(reach_[v], reach_last[v]);
     grid_.build(X_, reach_);
   }

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/csv.hpp"
+#include "ugs/formats/run_beside.hpp"
 #include "ugs/formats/toml_reader.hpp"
 #include "ugs/meshing/geodata.hpp"
 #include "ugs/meshing/natural_neighbour.hpp"
@@ -310,9 +311,7 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
         }
     };
     if (ns > 1 && std::thread::hardware_concurrency() > 1) {
-      std::thread odd(sample, std::size_t{1}, std::size_t{2});
-      sample(0, 2);
-      odd.join();
+      run_beside([&] { sample(1, 2); }, [&] { sample(0, 2); });
     } else {
       sample(0, 1);
     }

@@ -13,11 +13,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <exception>
-#include <thread>
 
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
+#include "ugs/formats/run_beside.hpp"
 #include "ugs/meshing/fault_cut.hpp"
 #include "ugs/meshing/layered_mesh.hpp"
 #include "ugs/meshing/mesh_quality.hpp"
@@ -159,22 +158,7 @@ int main(int argc, char** argv) {
     if (out.is_stdout()) {
       q = ugs::mesh_quality(mesh, opt.small_angle);
     } else {
-      std::exception_ptr failed;
-      std::thread measure([&] {
-        try {
-          q = ugs::mesh_quality(mesh, opt.small_angle);
-        } catch (...) {
-          failed = std::current_exception();
-        }
-      });
-      try {
-        ugs::write_msh(mesh, out, encoding);
-      } catch (...) {
-        measure.join();
-        throw;
-      }
-      measure.join();
-      if (failed) std::rethrow_exception(failed);
+      ugs::run_beside([&] { q = ugs::mesh_quality(mesh, opt.small_angle); }, [&] { ugs::write_msh(mesh, out, encoding); });
     }
     if (q.inverted > 0)  // cannot happen with the split rule on a valid plan; never write such a mesh
       throw ugs::ComputeError(std::to_string(q.inverted) + " tetrahedra are inverted or flat; no mesh written");

@@ -490,7 +490,7 @@ struct MechanicsSolver::Impl {
       return {};
     }
     std::vector<double> out(static_cast<std::size_t>(lm.n_global_cells) * k);
-    // Cells [first, first + values.size() / k) of rank p's owned cells.
+    // n values: cells [first, first + n / k) of rank p's owned cells.
     auto place = [&](const double* values, std::size_t n, int p, std::size_t first) {
       const auto& cells = lm.owned_cells_of_rank[p];
       for (std::size_t i = 0; i < n / k; ++i)
