@@ -2,6 +2,7 @@
 // projection of b on J times the stored solutions, exact when b lies in that span.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -130,6 +131,54 @@ TEST(SaddleGuess, KeepsTheLastEightAndFallsBackToZero) {
   EXPECT_EQ(g.form(J, bf, xf), 1.0);
   for (double v : values(xf)) EXPECT_EQ(v, 0.0);
   for (Vec* v : {&e0, &b, &x, &far, &bf, &xf}) VecDestroy(v);
+  MatDestroy(&J);
+}
+
+// Storage months: the operator keeps its values from one solve to the next, so the products J x_j
+// are kept and only the newest solution is multiplied; the iterate is the same, bit for bit, as
+// with every product recomputed. A changed operator (same_operator false) multiplies all again.
+TEST(SaddleGuess, KeepsItsProductsWhileTheOperatorKeepsItsValues) {
+  Mat J = make_matrix();
+  SaddleGuess kept, fresh;
+  std::vector<Vec> xs;
+  for (int k = 0; k < SaddleGuess::kKeep + 3; ++k) {
+    std::vector<double> v(kN);
+    for (int i = 0; i < kN; ++i) v[i] = std::sin(0.37 * (k + 1) * i + 0.2 * k) + (i == k % kN ? 1.0 : 0.0);
+    xs.push_back(vec(v));
+  }
+  Vec b = vec(std::vector<double>(kN, 0.0)), x1 = vec(std::vector<double>(kN, 0.0)), x2 = vec(std::vector<double>(kN, 0.0));
+  long long expected = 0;
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    kept.remember(xs[k]);
+    fresh.remember(xs[k]);
+    std::vector<double> bv(kN);
+    for (int i = 0; i < kN; ++i) bv[i] = std::cos(0.11 * i * (k + 2)) + 0.01 * i;
+    VecDestroy(&b);
+    b = vec(bv);
+    const double r1 = kept.form(J, b, x1, k > 0);  // the first form has no products yet
+    const double r2 = fresh.form(J, b, x2, false);
+    ++expected;  // one new solution a solve
+    EXPECT_EQ(kept.products(), expected) << k;
+    EXPECT_EQ(r1, r2) << k;
+    const std::vector<double> a1 = values(x1), a2 = values(x2);
+    for (int i = 0; i < kN; ++i) EXPECT_EQ(a1[i], a2[i]) << k << " " << i;
+  }
+  const int stored = std::min<int>(static_cast<int>(xs.size()), SaddleGuess::kKeep);
+  EXPECT_EQ(fresh.products(), [&] {
+    long long n = 0;
+    for (std::size_t k = 0; k < xs.size(); ++k) n += std::min<int>(static_cast<int>(k) + 1, SaddleGuess::kKeep);
+    return n;
+  }());
+  // Another operator: every stored solution multiplied again.
+  MatScale(J, 2.0);
+  const long long before = kept.products();
+  kept.form(J, b, x1, false);
+  fresh.form(J, b, x2, false);
+  EXPECT_EQ(kept.products(), before + stored);
+  const std::vector<double> a1 = values(x1), a2 = values(x2);
+  for (int i = 0; i < kN; ++i) EXPECT_EQ(a1[i], a2[i]) << i;
+  for (Vec& v : xs) VecDestroy(&v);
+  for (Vec* v : {&b, &x1, &x2}) VecDestroy(v);
   MatDestroy(&J);
 }
 

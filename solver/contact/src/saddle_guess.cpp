@@ -14,29 +14,36 @@ SaddleGuess::~SaddleGuess() {
   if (w_) VecDestroy(&w_);
 }
 
-double SaddleGuess::form(Mat J, Vec b, Vec x) {
+double SaddleGuess::form(Mat J, Vec b, Vec x, bool same_operator) {
   CHK(VecSet(x, 0.0));
   const int k = static_cast<int>(x_.size());
   if (k == 0) return 1.0;
-  while (static_cast<int>(y_.size()) < k) {
-    Vec y;
-    CHK(VecDuplicate(b, &y));
-    y_.push_back(y);
-  }
+  if (!same_operator) have_y_.assign(k, false);
   if (!w_) CHK(VecDuplicate(b, &w_));
-  for (int j = 0; j < k; ++j) CHK(MatMult(J, x_[j], y_[j]));
-  Eigen::MatrixXd G(k, k);
-  Eigen::VectorXd g(k);
   std::vector<PetscScalar> dots(k);
   for (int j = 0; j < k; ++j) {
-    CHK(VecMDot(y_[j], k, y_.data(), dots.data()));
-    for (int i = 0; i < k; ++i) G(i, j) = dots[i];
+    if (have_y_[j]) continue;
+    CHK(MatMult(J, x_[j], y_[j]));
+    ++products_;
   }
+  // The Gram matrix's rows and columns of the new products (one dot per pair: symmetric as built).
+  for (int j = 0; j < k; ++j) {
+    if (have_y_[j]) continue;
+    CHK(VecMDot(y_[j], k, y_.data(), dots.data()));
+    for (int i = 0; i < k; ++i) gram_[i][j] = gram_[j][i] = dots[i];
+  }
+  have_y_.assign(k, true);
+  Eigen::MatrixXd G(k, k);
+  Eigen::VectorXd g(k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) G(i, j) = gram_[i][j];
   CHK(VecMDot(b, k, y_.data(), dots.data()));
   for (int i = 0; i < k; ++i) g(i) = dots[i];
-  G = 0.5 * (G + G.transpose());
   // Pseudo-inverse over the eigenpairs above a cutoff: the stored solutions are nearly dependent
   // (the same seasonal shape), and the dropped directions add nothing to the residual reduction.
+  // (Scaled to a unit diagonal, the normal equations kept the small corrections' directions and
+  // halved a production month's iterations on the coarsened history, but tripled those of the
+  // months after a turning point: 2026-11-27.)
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(G);
   const Eigen::VectorXd lam = es.eigenvalues();
   Eigen::VectorXd c = Eigen::VectorXd::Zero(k);
@@ -55,15 +62,20 @@ double SaddleGuess::form(Mat J, Vec b, Vec x) {
 }
 
 void SaddleGuess::remember(Vec x) {
-  Vec v;
-  if (static_cast<int>(x_.size()) == kKeep) {
-    v = x_.front();
-    x_.erase(x_.begin());
+  Vec v, y;
+  if (static_cast<int>(x_.size()) == kKeep) {  // the oldest goes, its vectors are reused
+    v = x_.front(), y = y_.front();
+    x_.erase(x_.begin()), y_.erase(y_.begin()), have_y_.erase(have_y_.begin());
+    gram_.erase(gram_.begin());
+    for (auto& row : gram_) row.erase(row.begin());
   } else {
     CHK(VecDuplicate(x, &v));
+    CHK(VecDuplicate(x, &y));
   }
   CHK(VecCopy(x, v));
-  x_.push_back(v);
+  x_.push_back(v), y_.push_back(y), have_y_.push_back(false);
+  for (auto& row : gram_) row.push_back(0.0);
+  gram_.emplace_back(x_.size(), 0.0);
 }
 
 }  // namespace ugs::contact::detail

@@ -7,6 +7,9 @@
 
 #include <fmt/format.h>
 #include <petscksp.h>
+// PetscObjectStateGet (an advanced-level function PETSc declares with its object internals): K's
+// state tells whether its values changed since the last solve.
+#include <petsc/private/petscimpl.h>
 
 #include "petsc_call.hpp"
 #include "ugs/contact/dof_mask.hpp"
@@ -198,6 +201,7 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   for (int q = 0; q < m; ++q)
     for (int j = 0; j < 3; ++j) b[n3 + 3 * q + j] = -eq[q].F[j];
   active_set(pd, eq);
+  const bool same_operator = kind_ == SaddleSolver::FieldSplit && operator_unchanged(A, eq);
   if (kind_ == SaddleSolver::FieldSplit) {
     augment(A, pd, sys, b + n3);
     CHK(VecRestoreArray(rhs_, &b));
@@ -219,7 +223,7 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   // failed (a retry skips the factorisation and calls the solve phase: INFOG(1)=-3), so the
   // KSP is reset and the next solve starts from a fresh analysis.
   try {
-    its = linear_solve(A, rtol, sys, stats, reason);
+    its = linear_solve(A, rtol, same_operator, sys, stats, reason);
   } catch (const ComputeError& e) {
     const std::string mumps = mumps_infog(ksp_);
     reset();
@@ -250,8 +254,32 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   return out;
 }
 
+bool SaddlePointSolver::operator_unchanged(Mat A, const std::vector<PairEquations>& eq) {
+  PetscObjectState state = 0;
+  CHK(PetscObjectStateGet(reinterpret_cast<PetscObject>(A), &state));
+  std::vector<double> derivatives;
+  derivatives.reserve(18 * eq.size());
+  for (const PairEquations& e : eq) {
+    derivatives.insert(derivatives.end(), e.Jl.begin(), e.Jl.end());
+    derivatives.insert(derivatives.end(), e.Jg.begin(), e.Jg.end());
+  }
+  auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  };
+  int same = A == last_A_ && state == last_A_state_ && same_bits(signature_, last_signature_) &&
+             same_bits(derivatives, last_derivatives_);
+  last_A_ = A;
+  last_A_state_ = state;
+  last_signature_ = signature_;
+  last_derivatives_ = std::move(derivatives);
+  if (MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, comm_) != MPI_SUCCESS)
+    throw ComputeError("MPI_Allreduce failed in the saddle-point solver");
+  return same != 0;
+}
+
 void SaddlePointSolver::reset() {
   CHK(KSPReset(ksp_));
+  last_A_ = nullptr;  // the next solve's guess multiplies afresh
   for (Mat* a : {&J_, &Jaij_})
     if (*a) CHK(MatDestroy(a));
   A_seen_ = nullptr;
@@ -277,7 +305,8 @@ void SaddlePointSolver::keep_blocks(bool keep) {
   blocks_kept_ = keep;
 }
 
-PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason) {
+PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, bool same_operator, SaddleSystem& sys, ContactStats& stats,
+                                         KSPConvergedReason& reason) {
   const bool iterative = kind_ == SaddleSolver::FieldSplit;
   Mat op = nullptr;
   if (!J_ || A != A_seen_) {
@@ -342,7 +371,8 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, SaddleSystem& sys, 
     CHK(KSPSetReusePreconditioner(ksp_, keep ? PETSC_TRUE : PETSC_FALSE));
     PetscReal bnorm = 0;
     if (iterative) {
-      guess_ratio_ = guess_.form(op, rhs_, sol_);
+      guess_ratio_ = guess_.form(op, rhs_, sol_, same_operator);
+      same_operator = true;  // (a repeated solve: the products are those of this operator)
       CHK(KSPSetInitialGuessNonzero(ksp_, guess_ratio_ < 1 ? PETSC_TRUE : PETSC_FALSE));
     }
     CHK(VecNorm(rhs_, NORM_2, &bnorm));

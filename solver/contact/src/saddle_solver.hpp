@@ -50,7 +50,12 @@ private:
   // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split; W from active_set).
   void augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, PetscScalar* rl);
   // The operator, the preconditioner and KSPSolve on rhs_ into sol_; throws ComputeError on a PETSc error.
-  PetscInt linear_solve(Mat A, double rtol, SaddleSystem& sys, ContactStats& stats, KSPConvergedReason& reason);
+  PetscInt linear_solve(Mat A, double rtol, bool same_operator, SaddleSystem& sys, ContactStats& stats,
+                        KSPConvergedReason& reason);
+  // Collective: whether the operator has the values of the last solve's (K by its assembly state,
+  // the active set's weights, the pair equations' derivatives: B, D and through them K_gamma);
+  // remembers this solve's for the next call.
+  bool operator_unchanged(Mat A, const std::vector<PairEquations>& eq);
   // After a failure: drops the factorisation or hierarchy and the block operator, so that the next
   // solve sets everything up afresh.
   void reset();
@@ -74,6 +79,10 @@ private:
   std::vector<double> signature_;  // the augmentation weight of every multiplier row (the active set)
   SaddleGuess guess_;  // the field split's first iterate from the last solutions
   double guess_ratio_ = 1;  // ||b - J x0|| / ||b|| of the last solve's first iterate
+  // What the last solve's operator was built from (operator_unchanged).
+  Mat last_A_ = nullptr;
+  PetscObjectState last_A_state_ = 0;
+  std::vector<double> last_signature_, last_derivatives_;
 };
 
 }  // namespace ugs::contact::detail
