@@ -158,27 +158,29 @@ void SaddlePointSolver::active_set(const PairDistribution& pd, const std::vector
     }
 }
 
-void SaddlePointSolver::augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, PetscScalar* rl) {
+void SaddlePointSolver::augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, PetscScalar* rl, bool same_operator) {
   const int m = pd.m;
   const std::vector<double>& wdiag = signature_;
   PetscScalar* a = nullptr;
-  CHK(VecGetArray(wr_, &a));
-  for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i];
-  CHK(VecRestoreArray(wr_, &a));
-  if (!WB_) CHK(MatDuplicate(sys.B, MAT_COPY_VALUES, &WB_));
-  else CHK(MatCopy(sys.B, WB_, SAME_NONZERO_PATTERN));
-  CHK(MatDiagonalScale(WB_, wr_, nullptr));
-  if (!G_) CHK(MatMatMult(sys.C, WB_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G_));
-  else CHK(MatMatMult(sys.C, WB_, MAT_REUSE_MATRIX, PETSC_DEFAULT, &G_));
-  if (!Kg_) {
-    CHK(MatDuplicate(A, MAT_COPY_VALUES, &Kg_));
-    CHK(MatAXPY(Kg_, 1.0, G_, DIFFERENT_NONZERO_PATTERN));
-    MatNullSpace nsp = nullptr;
-    CHK(MatGetNearNullSpace(A, &nsp));
-    if (nsp) CHK(MatSetNearNullSpace(Kg_, nsp));
-  } else if (!kg_sum_.sum(A, G_, Kg_)) {
-    CHK(MatCopy(A, Kg_, SUBSET_NONZERO_PATTERN));
-    CHK(MatAXPY(Kg_, 1.0, G_, SUBSET_NONZERO_PATTERN));
+  if (!same_operator || !Kg_) {  // (kept: K_gamma holds K + C W B of these values already)
+    CHK(VecGetArray(wr_, &a));
+    for (int i = 0; i < 3 * m; ++i) a[i] = wdiag[i];
+    CHK(VecRestoreArray(wr_, &a));
+    if (!WB_) CHK(MatDuplicate(sys.B, MAT_COPY_VALUES, &WB_));
+    else CHK(MatCopy(sys.B, WB_, SAME_NONZERO_PATTERN));
+    CHK(MatDiagonalScale(WB_, wr_, nullptr));
+    if (!G_) CHK(MatMatMult(sys.C, WB_, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &G_));
+    else CHK(MatMatMult(sys.C, WB_, MAT_REUSE_MATRIX, PETSC_DEFAULT, &G_));
+    if (!Kg_) {
+      CHK(MatDuplicate(A, MAT_COPY_VALUES, &Kg_));
+      CHK(MatAXPY(Kg_, 1.0, G_, DIFFERENT_NONZERO_PATTERN));
+      MatNullSpace nsp = nullptr;
+      CHK(MatGetNearNullSpace(A, &nsp));
+      if (nsp) CHK(MatSetNearNullSpace(Kg_, nsp));
+    } else if (!kg_sum_.sum(A, G_, Kg_)) {
+      CHK(MatCopy(A, Kg_, SUBSET_NONZERO_PATTERN));
+      CHK(MatAXPY(Kg_, 1.0, G_, SUBSET_NONZERO_PATTERN));
+    }
   }
   // Right-hand side: r_u += C W r_lambda.
   CHK(VecGetArray(wr_, &a));
@@ -203,7 +205,7 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
   active_set(pd, eq);
   const bool same_operator = kind_ == SaddleSolver::FieldSplit && operator_unchanged(A, eq);
   if (kind_ == SaddleSolver::FieldSplit) {
-    augment(A, pd, sys, b + n3);
+    augment(A, pd, sys, b + n3, same_operator);
     CHK(VecRestoreArray(rhs_, &b));
     CHK(MatMult(sys.C, wr_, sys.fc));  // C W r_lambda
     CHK(VecGetArray(rhs_, &b));
@@ -256,7 +258,9 @@ mech::CouplingSolve SaddlePointSolver::solve(Mat A, Vec r, Vec du, double rtol, 
 
 bool SaddlePointSolver::operator_unchanged(Mat A, const std::vector<PairEquations>& eq) {
   PetscObjectState state = 0;
+  PetscObjectId id = 0;  // (unique per object: a matrix created anew at the same address differs)
   CHK(PetscObjectStateGet(reinterpret_cast<PetscObject>(A), &state));
+  CHK(PetscObjectGetId(reinterpret_cast<PetscObject>(A), &id));
   std::vector<double> derivatives;
   derivatives.reserve(18 * eq.size());
   for (const PairEquations& e : eq) {
@@ -266,9 +270,10 @@ bool SaddlePointSolver::operator_unchanged(Mat A, const std::vector<PairEquation
   auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
   };
-  int same = A == last_A_ && state == last_A_state_ && same_bits(signature_, last_signature_) &&
+  int same = have_last_ && id == last_A_id_ && state == last_A_state_ && same_bits(signature_, last_signature_) &&
              same_bits(derivatives, last_derivatives_);
-  last_A_ = A;
+  have_last_ = true;
+  last_A_id_ = id;
   last_A_state_ = state;
   last_signature_ = signature_;
   last_derivatives_ = std::move(derivatives);
@@ -279,7 +284,7 @@ bool SaddlePointSolver::operator_unchanged(Mat A, const std::vector<PairEquation
 
 void SaddlePointSolver::reset() {
   CHK(KSPReset(ksp_));
-  last_A_ = nullptr;  // the next solve's guess multiplies afresh
+  have_last_ = false;  // the next solve's guess multiplies afresh
   for (Mat* a : {&J_, &Jaij_})
     if (*a) CHK(MatDestroy(a));
   A_seen_ = nullptr;

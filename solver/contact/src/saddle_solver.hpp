@@ -47,8 +47,9 @@ private:
   // The active set's signature: the augmentation weight gamma / A_q of every constraint row (stick,
   // the normal of a slipping pair), 0 elsewhere; the weights W of the field split's augmentation.
   void active_set(const PairDistribution& pd, const std::vector<PairEquations>& eq);
-  // K_gamma = K + C W B into Kg, and W r_lambda into wr (field split; W from active_set).
-  void augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, PetscScalar* rl);
+  // K_gamma = K + C W B into Kg (kept when same_operator), and W r_lambda into wr (field split; W
+  // from active_set).
+  void augment(Mat A, const PairDistribution& pd, SaddleSystem& sys, PetscScalar* rl, bool same_operator);
   // The operator, the preconditioner and KSPSolve on rhs_ into sol_; throws ComputeError on a PETSc error.
   PetscInt linear_solve(Mat A, double rtol, bool same_operator, SaddleSystem& sys, ContactStats& stats,
                         KSPConvergedReason& reason);
@@ -80,7 +81,8 @@ private:
   SaddleGuess guess_;  // the field split's first iterate from the last solutions
   double guess_ratio_ = 1;  // ||b - J x0|| / ||b|| of the last solve's first iterate
   // What the last solve's operator was built from (operator_unchanged).
-  Mat last_A_ = nullptr;
+  bool have_last_ = false;
+  PetscObjectId last_A_id_ = 0;
   PetscObjectState last_A_state_ = 0;
   std::vector<double> last_signature_, last_derivatives_;
 };
