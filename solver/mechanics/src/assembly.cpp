@@ -1,6 +1,10 @@
 // Loads, residual and tangent assembly of the mechanics solver (solver_impl.hpp).
 #include "solver_impl.hpp"
 
+// PetscObjectStateGet (an advanced-level function PETSc declares with its object internals): whether
+// u changed since the last residual.
+#include <petsc/private/petscimpl.h>
+
 namespace ugs::mech {
 
 void MechanicsSolver::Impl::external_force(const std::vector<double>& dp) {
@@ -20,6 +24,12 @@ void MechanicsSolver::Impl::external_force(const std::vector<double>& dp) {
 
 double MechanicsSolver::Impl::residual() {
   PetscLogEventBegin(events().residual, 0, 0, 0, 0);
+  // The elements that are not hypo-plastic (nearly all of them) give the same forces as at the
+  // last residual when u has not changed since: a step's first residual, where the step before
+  // ended. Its state is read before the ghost update (which advances it) and kept after it.
+  PetscObjectState state = 0;
+  UGS_PETSC(PetscObjectStateGet(reinterpret_cast<PetscObject>(u), &state));
+  const bool elastic_kept = fint_elastic_valid && state == fint_elastic_state;
   UGS_PETSC(VecGhostUpdateBegin(u, INSERT_VALUES, SCATTER_FORWARD));
   UGS_PETSC(VecGhostUpdateEnd(u, INSERT_VALUES, SCATTER_FORWARD));
   Vec ul;
@@ -27,14 +37,16 @@ double MechanicsSolver::Impl::residual() {
   UGS_PETSC(VecGhostGetLocalForm(u, &ul));
   UGS_PETSC(VecGetArrayRead(ul, &ua));
   std::fill(fint.begin(), fint.end(), 0.0);
+  if (!elastic_kept) fint_elastic.assign(fint.size(), 0.0);
   bool sat = false;
   for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
     const int c = static_cast<int>(ci);
+    const int h = hyp.of_cell[c];
+    if (h < 0 && elastic_kept) continue;
     double ue[12];
     gather_element(ua, c, ue);
     const Vec6 eps = fem::tet4_strain(geo[c], ue);
     Vec6 ds;
-    const int h = hyp.of_cell[c];
     if (h < 0) {
       ds = elastic_stress(c, eps);
     } else {
@@ -47,11 +59,14 @@ double MechanicsSolver::Impl::residual() {
     }
     double fe[12] = {};
     fem::tet4_add_internal_force(geo[c], ds, fe);
-    add_owned(fint, c, fe);
+    add_owned(h < 0 ? fint_elastic : fint, c, fe);
   }
+  for (std::size_t i = 0; i < fint.size(); ++i) fint[i] += fint_elastic[i];
   hyp.saturated = sat;
   UGS_PETSC(VecRestoreArrayRead(ul, &ua));
   UGS_PETSC(VecGhostRestoreLocalForm(u, &ul));
+  UGS_PETSC(PetscObjectStateGet(reinterpret_cast<PetscObject>(u), &fint_elastic_state));
+  fint_elastic_valid = true;
   PetscScalar* ra = nullptr;
   UGS_PETSC(VecGetArray(r, &ra));
   for (int a = 0; a < lm.n_owned; ++a)

@@ -278,6 +278,12 @@ struct MechanicsSolver::Impl {
   // ---- loads ----------------------------------------------------------------------------------
   std::vector<double> dp_cell;         // pressure change of the current state, per local element
   std::vector<double> fext, fint;      // 3 per owned node
+  // The internal forces of the elements that are not hypo-plastic (they depend on u alone), kept
+  // from one residual to the next while u keeps its values (its PETSc object state): a step's
+  // first residual is taken where the last one of the step before was (residual()).
+  std::vector<double> fint_elastic;
+  bool fint_elastic_valid = false;
+  PetscObjectState fint_elastic_state = 0;
 
   // ---- linear system --------------------------------------------------------------------------
   Assembler assembler;
