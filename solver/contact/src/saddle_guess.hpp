@@ -32,7 +32,7 @@ public:
 
   static constexpr int kKeep = 8;
 
-  // Products computed by form() since construction (for tests and the log).
+  // Products computed by form() since construction (the tests count them).
   long long products() const { return products_; }
 
 private:
