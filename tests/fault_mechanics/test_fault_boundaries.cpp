@@ -82,7 +82,7 @@ struct Faulted {
 // faces inside it).
 Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double dp, int max_state_changes = 4,
                 const std::function<void(contact::FaultModel&)>& tamper = {}, int max_substeps = 64,
-                contact::SaddleSolver solver = contact::SaddleSolver::Mumps) {
+                contact::SaddleSolver solver = contact::SaddleSolver::Mumps, double tolerance = 1e-12) {
   Faulted f;
   const mech::Model m = mech::build_model(mesh, cs, true);
   f.fm = contact::build_fault_model(mesh, cs, m, contact::geostatic_fault_state(m.initial));
@@ -93,6 +93,7 @@ Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double d
   contact::FaultContact fc(MPI_COMM_WORLD, &f.fm, copt);
   mech::SolverOptions opt = solver_options();
   opt.max_substeps = max_substeps;
+  opt.tolerance = tolerance;
   mech::MechanicsSolver s(MPI_COMM_WORLD, &m, opt);
   s.set_coupling(fc);
   fc.set_pressure_change(std::vector<double>(f.fm.pairs.size(), 0.0));
@@ -419,6 +420,36 @@ TEST(SlabJunction, LockedCrossingFaultsEqualContinuous) {
   EXPECT_GT(f.fm.inactive_pairs, 0u);   // G on the bottom: x free only
   EXPECT_LT(rel, 1e-8);
   EXPECT_EQ(c.slip + c.open, 0);
+}
+
+// The junction's multipliers have a circulation that only the closing pair's perturbed-Lagrangian
+// term sees: the tractions there must not depend on how far the iterative solver converges (with a
+// weight of 1e-6 the circulation's residual lay below the Newton tolerance and junction tractions
+// moved with the tolerance, a tenth of max chi over the coarsened thesis history).
+TEST(SlabJunction, TractionsDoNotDependOnTheTolerance) {
+  Mesh mesh = test::dipping_slab(false, kTilt, true);
+  test::insert_all_faults(mesh);
+  CaseFile cs = boundary_case(1e11, 30);
+  FaultSpec g = cs.faults[0];
+  g.name = "G";
+  g.where = "bound.toml:3";
+  cs.faults.push_back(g);
+  const Faulted loose = faulted(mesh, cs, slab_block, -20e6, 4, {}, 64, contact::SaddleSolver::FieldSplit, 1e-6);
+  const Faulted tight = faulted(mesh, cs, slab_block, -20e6, 4, {}, 64, contact::SaddleSolver::FieldSplit, 1e-11);
+  ASSERT_TRUE(loose.load.converged) << loose.load.failure;
+  ASSERT_TRUE(tight.load.converged) << tight.load.failure;
+  double change = 0, diff = 0, diff_junction = 0;
+  for (std::size_t q = 0; q < tight.fm.pairs.size(); ++q)
+    for (int j = 0; j < 3; ++j) {
+      const double d = std::abs(loose.res.lambda[3 * q + j] - tight.res.lambda[3 * q + j]);
+      change = std::max(change, std::abs(tight.res.lambda[3 * q + j] - tight.fm.pairs[q].lambda0[j]));
+      diff = std::max(diff, d);
+      if (tight.fm.pairs[q].redundant) diff_junction = std::max(diff_junction, d);
+    }
+  std::printf("slab junction: max traction change %.3e Pa; tolerance 1e-6 vs 1e-11: max difference %.3e Pa (closing pairs %.3e Pa)\n",
+              change, diff, diff_junction);
+  EXPECT_GT(change, 1e5);
+  EXPECT_LT(diff, 1e-3 * change);  // 1.2e-4 measured; 0.50 with the weight 1e-6
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, Slab, ::testing::Values(false, true),
