@@ -449,7 +449,7 @@ TEST(SlabJunction, TractionsDoNotDependOnTheTolerance) {
   std::printf("slab junction: max traction change %.3e Pa; tolerance 1e-6 vs 1e-11: max difference %.3e Pa (closing pairs %.3e Pa)\n",
               change, diff, diff_junction);
   EXPECT_GT(change, 1e5);
-  EXPECT_LT(diff, 1e-3 * change);  // 1.2e-4 measured; 0.50 with the weight 1e-6
+  EXPECT_LT(diff, 1e-5 * change);  // 8.0e-7 measured; 0.50 with the weight 1e-6 on closed cycles
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, Slab, ::testing::Values(false, true),

@@ -63,6 +63,9 @@ struct FaultContact::Impl {
   std::vector<std::uint8_t> owned_fixed;      // prescribed components of the owned nodes
   ContactStats stats;
 
+  int junctions = 0;             // junction groups over all ranks (PairData::junction)
+  std::vector<int> junction_open;  // per junction: a pair of its cycle slips or is open (this residual)
+
   PairLaw law(int q) const {
     const PairData& d = pairs.pairs[q];
     PairLaw L;
@@ -71,7 +74,9 @@ struct FaultContact::Impl {
     L.cohesion = d.cohesion;
     L.mu = d.mu;
     L.active = d.active;
-    L.regularization = d.redundant ? opt.regularization : 0.0;
+    // The pair closing a cycle: where every pair of the cycle sticks its constraint follows from the
+    // others' and the weight only fixes the multipliers' circulation (contact.hpp).
+    L.regularization = !d.redundant ? 0.0 : junction_open[d.junction] ? opt.regularization : opt.closed_regularization;
     return L;
   }
 
@@ -92,6 +97,9 @@ struct FaultContact::Impl {
     }
     pairs.build(c, fm);
     m = pairs.m;
+    for (int q = 0; q < m; ++q) junctions = std::max(junctions, pairs.pairs[q].junction + 1);
+    MPI_Allreduce(MPI_IN_PLACE, &junctions, 1, MPI_INT, MPI_MAX, comm);
+    junction_open.assign(junctions, 0);
 
     lam.resize(m);
     for (int q = 0; q < m; ++q) lam[q] = {pairs.pairs[q].lam0[0], pairs.pairs[q].lam0[1], pairs.pairs[q].lam0[2]};
@@ -113,6 +121,7 @@ struct FaultContact::Impl {
   // ---- residual -------------------------------------------------------------------------------
   double residual(Vec u, Vec r) {
     const PetscScalar* ua = pairs.twins(u);
+    const std::vector<PairState> prev = junctions > 0 ? st_prev : std::vector<PairState>{};  // (for the second pass)
     double ss = 0;
     int changes = 0;
     for (int q = 0; q < m; ++q) {
@@ -130,9 +139,24 @@ struct FaultContact::Impl {
                      g[q][1], g[q][2], d.p0 + dp_now[q]);
       if (changed_last[q]) ++flips[q], ++changes;
       st_prev[q] = st[q];
-      for (double f : eq[q].F) ss += f * f;
     }
     pairs.restore_twins(ua);
+    // The pairs closing a cycle take the weight of their cycle's state (the states above do not
+    // depend on it: it enters F only).
+    if (junctions > 0) {
+      std::vector<int> open(junctions, 0);
+      for (int q = 0; q < m; ++q)
+        if (pairs.pairs[q].junction >= 0 && st[q] != PairState::Stick) open[pairs.pairs[q].junction] = 1;
+      MPI_Allreduce(open.data(), junction_open.data(), junctions, MPI_INT, MPI_MAX, comm);
+      for (int q = 0; q < m; ++q) {
+        const PairData& d = pairs.pairs[q];
+        if (!d.redundant) continue;
+        const std::array<double, 3> lam0{d.lam0[0], d.lam0[1], d.lam0[2]};
+        eq[q] = pair_equations(law(q), lam[q], lam0, lam_c[q], g[q], gc[q], d.p0 + dp_now[q], prev[q]);
+      }
+    }
+    for (int q = 0; q < m; ++q)
+      for (double f : eq[q].F) ss += f * f;
     stats.state_changes += changes;
     int any = 0;
     MPI_Allreduce(&changes, &any, 1, MPI_INT, MPI_SUM, comm);

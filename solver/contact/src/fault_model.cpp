@@ -376,6 +376,16 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
       ++fm.redundant_pairs;
     }
   }
+  // Junctions: the pairs whose twins are joined to a cycle's (the copies of one node where faults
+  // meet), numbered in the order of their first closing pair.
+  std::map<std::uint32_t, std::int32_t> junction_of;
+  for (const NodePair& p : fm.pairs)
+    if (p.redundant) junction_of.emplace(dsu.find(p.side1), static_cast<std::int32_t>(junction_of.size()));
+  for (NodePair& p : fm.pairs) {
+    const auto it = junction_of.find(dsu.find(p.side1));
+    if (it != junction_of.end()) p.junction = it->second;
+  }
+  fm.junctions = junction_of.size();
 
   // 5. The output surface.
   FaultSurface& S = fm.surface;

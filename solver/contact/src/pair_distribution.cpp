@@ -56,6 +56,7 @@ void PairDistribution::build(const mech::CouplingContext& ctx, const FaultModel*
       d.fixed2 = p.fixed2;
       d.active = p.active;
       d.redundant = p.redundant ? 1 : 0;
+      d.junction = p.junction;
     }
   }
   MPI_Bcast(counts.data(), size, MPI_INT, 0, comm);

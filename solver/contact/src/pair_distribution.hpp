@@ -19,6 +19,7 @@ struct PairData {
   std::uint64_t tag1, tag2;         // mesh node tags (messages)
   std::uint32_t model_index;
   std::int32_t fault;
+  std::int32_t junction;            // NodePair::junction
   double area, k, cohesion, mu, p0;
   double R[9];
   double lam0[3];

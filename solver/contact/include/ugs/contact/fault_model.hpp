@@ -61,6 +61,7 @@ struct NodePair {
   std::uint8_t fixed1 = 0, fixed2 = 0; // prescribed displacement components of the twins (bits x, y, z)
   std::uint8_t active = 7;             // bit j: local component j carries a multiplier (constraint_frame)
   bool redundant = false;              // closes a cycle of pairs at a junction
+  std::int32_t junction = -1;          // the junction whose cycle the pair belongs to (-1: none)
 
   // The pair obeys the friction law with its normal and at least one shear direction free: it counts
   // in the fault statistics (max chi, slipping and open pairs) and the scenario search.
@@ -82,6 +83,7 @@ struct FaultModel {
   std::vector<NodePair> pairs;
   FaultSurface surface;
   std::size_t redundant_pairs = 0;
+  std::size_t junctions = 0;           // groups of pairs joined in a cycle (NodePair::junction)
   std::size_t inactive_pairs = 0;      // pairs on prescribed boundaries that are not frictional()
   std::size_t boundary_pairs = 0;      // pairs with a reduced frame (some jump component prescribed)
 };
