@@ -184,6 +184,45 @@ TEST(SaddleGuess, KeepsItsProductsWhileTheOperatorKeepsItsValues) {
 
 }  // namespace
 
+// A large increment and two small corrections that differ by 1e-3 of their size: the direction of
+// their difference is 1e-14 of the largest eigenvalue of the plain normal equations (cut), 1e-6 of
+// the scaled ones (kept). A right-hand side along that difference is reached through the scaled
+// projection, checked by one more product; with a target above the plain projection's residual the
+// scaled one is not tried.
+TEST(SaddleGuess, ReachesSmallCorrectionsBesideLargeIncrements) {
+  Mat J = make_matrix();
+  std::vector<double> big(kN), q(kN), s(kN), c1(kN), c2(kN), xs(kN);
+  for (int i = 0; i < kN; ++i) {
+    big[i] = std::sin(0.3 * i + 0.1);
+    q[i] = std::cos(0.7 * i);
+    s[i] = (i % 4 == 1 ? 1.0 : 0.0) - (i % 5 == 2 ? 0.5 : 0.0);
+    c1[i] = 1e-4 * q[i];
+    c2[i] = 1e-4 * (q[i] + 1e-3 * s[i]);
+    xs[i] = 1e-7 * s[i];  // = c2 - c1
+  }
+  Vec vb = vec(big), v1 = vec(c1), v2 = vec(c2), vs = vec(xs), b, x = vec(std::vector<double>(kN, 0.0));
+  VecDuplicate(vs, &b);
+  MatMult(J, vs, b);
+  SaddleGuess g;
+  g.remember(vb);
+  g.remember(v1);
+  g.remember(v2);
+  const double reached = g.form(J, b, x);
+  EXPECT_LT(reached, 1e-6);
+  EXPECT_EQ(g.products(), 4);  // three stored solutions and the check of the scaled projection
+  const std::vector<double> got = values(x);
+  for (int i = 0; i < kN; ++i) EXPECT_NEAR(got[i], xs[i], 1e-6 * 1e-7);
+  SaddleGuess plain_only;  // a target the plain projection already meets: no scaled try
+  plain_only.remember(vb);
+  plain_only.remember(v1);
+  plain_only.remember(v2);
+  const double plain = plain_only.form(J, b, x, false, 2.0);
+  EXPECT_GT(plain, 1e-2);
+  EXPECT_EQ(plain_only.products(), 3);
+  for (Vec* v : {&vb, &v1, &v2, &vs, &b, &x}) VecDestroy(v);
+  MatDestroy(&J);
+}
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   ugs::mech::PetscSession petsc;

@@ -25,8 +25,9 @@ public:
   ~SaddleGuess();
   // Writes the projection into x and returns ||b - J x|| / ||b||; x = 0 and 1 when there is no history.
   // same_operator: J has the values it had at the last form() (the caller's promise; collective
-  // agreement is the caller's): the products kept from then are reused.
-  double form(Mat J, Vec b, Vec x, bool same_operator = false);
+  // agreement is the caller's): the products kept from then are reused. enough: the solve's
+  // relative target; above it the scaled projection is tried as well (saddle_guess.cpp).
+  double form(Mat J, Vec b, Vec x, bool same_operator = false, double enough = 0);
   // Keeps a copy of the solution of a converged solve (the oldest dropped beyond kKeep).
   void remember(Vec x);
 

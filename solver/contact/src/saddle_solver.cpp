@@ -376,7 +376,7 @@ PetscInt SaddlePointSolver::linear_solve(Mat A, double rtol, bool same_operator,
     CHK(KSPSetReusePreconditioner(ksp_, keep ? PETSC_TRUE : PETSC_FALSE));
     PetscReal bnorm = 0;
     if (iterative) {
-      guess_ratio_ = guess_.form(op, rhs_, sol_, same_operator);
+      guess_ratio_ = guess_.form(op, rhs_, sol_, same_operator, tol);
       same_operator = true;  // (a repeated solve: the products are those of this operator)
       CHK(KSPSetInitialGuessNonzero(ksp_, guess_ratio_ < 1 ? PETSC_TRUE : PETSC_FALSE));
     }
