@@ -82,7 +82,9 @@ struct Faulted {
 // faces inside it).
 Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double dp, int max_state_changes = 4,
                 const std::function<void(contact::FaultModel&)>& tamper = {}, int max_substeps = 64,
-                contact::SaddleSolver solver = contact::SaddleSolver::Mumps, double tolerance = 1e-12) {
+                contact::SaddleSolver solver = contact::SaddleSolver::Mumps, double tolerance = 1e-12,
+                const std::array<double, 2>& junction_weights = {contact::ContactOptions{}.regularization,
+                                                                 contact::ContactOptions{}.closed_regularization}) {
   Faulted f;
   const mech::Model m = mech::build_model(mesh, cs, true);
   f.fm = contact::build_fault_model(mesh, cs, m, contact::geostatic_fault_state(m.initial));
@@ -90,6 +92,8 @@ Faulted faulted(const Mesh& mesh, const CaseFile& cs, const Region& in, double d
   contact::ContactOptions copt;
   copt.solver = solver;
   copt.max_state_changes = max_state_changes;
+  copt.regularization = junction_weights[0];
+  copt.closed_regularization = junction_weights[1];
   contact::FaultContact fc(MPI_COMM_WORLD, &f.fm, copt);
   mech::SolverOptions opt = solver_options();
   opt.max_substeps = max_substeps;
@@ -450,6 +454,39 @@ TEST(SlabJunction, TractionsDoNotDependOnTheTolerance) {
               change, diff, diff_junction);
   EXPECT_GT(change, 1e5);
   EXPECT_LT(diff, 1e-5 * change);  // 8.0e-7 measured; 0.50 with the weight 1e-6 on closed cycles
+}
+
+// Friction 20 degrees: pairs of one junction slip, the other junction's all stick. The closed cycle's
+// weight changes nothing (its constraint follows from the others'); the open cycle's closing pair
+// keeps its own constraint (with weight 1 there too the slipping junction moved 1.3 % of max |u|).
+TEST(SlabJunction, SlippingJunctionKeepsItsOwnConstraint) {
+  Mesh mesh = test::dipping_slab(false, kTilt, true);
+  test::insert_all_faults(mesh);
+  CaseFile cs = boundary_case(0, 20);
+  FaultSpec g = cs.faults[0];
+  g.name = "G";
+  g.where = "bound.toml:3";
+  cs.faults.push_back(g);
+  const auto run = [&](double open, double closed) {
+    return faulted(mesh, cs, slab_block, -20e6, 4, {}, 64, contact::SaddleSolver::Mumps, 1e-12, {open, closed});
+  };
+  const Faulted ours = run(1e-6, 1.0), small = run(1e-6, 1e-6), large = run(1.0, 1.0);
+  for (const Faulted* f : {&ours, &small, &large}) ASSERT_TRUE(f->load.converged) << f->load.failure;
+  std::vector<int> open(ours.fm.junctions, 0);
+  for (std::size_t q = 0; q < ours.fm.pairs.size(); ++q)
+    if (ours.fm.pairs[q].junction >= 0 && ours.res.state[q] != 0) open[ours.fm.pairs[q].junction] = 1;
+  EXPECT_EQ(ours.fm.junctions, 2u);
+  EXPECT_EQ(std::count(open.begin(), open.end(), 1), 1);  // one open cycle, one closed
+  double umax = 0, d_small = 0, d_large = 0;
+  for (std::size_t i = 0; i < ours.u.size(); ++i) {
+    umax = std::max(umax, std::abs(small.u[i]));
+    d_small = std::max(d_small, std::abs(ours.u[i] - small.u[i]));
+    d_large = std::max(d_large, std::abs(large.u[i] - small.u[i]));
+  }
+  std::printf("slipping junction: max |u| %.3e m; closed weight 1: %.2e, weight 1 on both: %.2e of it\n", umax, d_small / umax,
+              d_large / umax);
+  EXPECT_LT(d_small, 1e-9 * umax);
+  EXPECT_GT(d_large, 1e-3 * umax);
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, Slab, ::testing::Values(false, true),
