@@ -400,6 +400,22 @@ TEST(SlabFailure, FailedFactorisationIsRecoveredFrom) {
   EXPECT_EQ(fc.gather().state, fresh.res.state);
 }
 
+// The slab with its dipping fault F crossed by a vertical one, G (an X-junction), and their case.
+Mesh crossing_slab() {
+  Mesh mesh = test::dipping_slab(false, kTilt, true);
+  test::insert_all_faults(mesh);
+  return mesh;
+}
+
+CaseFile crossing_case(double cohesion_Pa, double friction_deg) {
+  CaseFile cs = boundary_case(cohesion_Pa, friction_deg);
+  FaultSpec g = cs.faults[0];
+  g.name = "G";
+  g.where = "bound.toml:3";
+  cs.faults.push_back(g);
+  return cs;
+}
+
 // Two faults crossing in the slab (an X-junction on the roller planes y = 0 and y = 50; the vertical
 // one reaches the bottom roller, where its pairs keep only the normal along x): locked = continuous,
 // one pair per junction node closes a cycle.
@@ -407,11 +423,7 @@ TEST(SlabJunction, LockedCrossingFaultsEqualContinuous) {
   const Mesh plain = test::dipping_slab(false, kTilt, true);
   Mesh mesh = plain;
   test::insert_all_faults(mesh);
-  CaseFile cs = boundary_case(1e11, 30);
-  FaultSpec g = cs.faults[0];
-  g.name = "G";
-  g.where = "bound.toml:3";
-  cs.faults.push_back(g);
+  const CaseFile cs = crossing_case(1e11, 30);
   const auto u0 = continuous(plain, cs, slab_block, -20e6);
   const Faulted f = faulted(mesh, cs, slab_block, -20e6);
   ASSERT_TRUE(f.geostatic.converged) << f.geostatic.failure;
@@ -431,13 +443,8 @@ TEST(SlabJunction, LockedCrossingFaultsEqualContinuous) {
 // weight of 1e-6 the circulation's residual lay below the Newton tolerance and junction tractions
 // moved with the tolerance, a tenth of max chi over the coarsened thesis history).
 TEST(SlabJunction, TractionsDoNotDependOnTheTolerance) {
-  Mesh mesh = test::dipping_slab(false, kTilt, true);
-  test::insert_all_faults(mesh);
-  CaseFile cs = boundary_case(1e11, 30);
-  FaultSpec g = cs.faults[0];
-  g.name = "G";
-  g.where = "bound.toml:3";
-  cs.faults.push_back(g);
+  const Mesh mesh = crossing_slab();
+  const CaseFile cs = crossing_case(1e11, 30);
   const Faulted loose = faulted(mesh, cs, slab_block, -20e6, 4, {}, 64, contact::SaddleSolver::FieldSplit, 1e-6);
   const Faulted tight = faulted(mesh, cs, slab_block, -20e6, 4, {}, 64, contact::SaddleSolver::FieldSplit, 1e-11);
   ASSERT_TRUE(loose.load.converged) << loose.load.failure;
@@ -460,13 +467,8 @@ TEST(SlabJunction, TractionsDoNotDependOnTheTolerance) {
 // weight changes nothing (its constraint follows from the others'); the open cycle's closing pair
 // keeps its own constraint (with weight 1 there too the slipping junction moved 1.3 % of max |u|).
 TEST(SlabJunction, SlippingJunctionKeepsItsOwnConstraint) {
-  Mesh mesh = test::dipping_slab(false, kTilt, true);
-  test::insert_all_faults(mesh);
-  CaseFile cs = boundary_case(0, 20);
-  FaultSpec g = cs.faults[0];
-  g.name = "G";
-  g.where = "bound.toml:3";
-  cs.faults.push_back(g);
+  const Mesh mesh = crossing_slab();
+  const CaseFile cs = crossing_case(0, 20);
   const auto run = [&](double open, double closed) {
     return faulted(mesh, cs, slab_block, -20e6, 4, {}, 64, contact::SaddleSolver::Mumps, 1e-12, {open, closed});
   };

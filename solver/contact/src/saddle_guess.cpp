@@ -18,7 +18,7 @@ SaddleGuess::~SaddleGuess() {
 
 namespace {
 
-// c minimising || g_b - Y c || through the normal equations G c = g (G = Y^T Y, g = Y^T b): the
+// c minimising || b - Y c || through the normal equations G c = g (G = Y^T Y, g = Y^T b): the
 // pseudo-inverse over the eigenpairs above 1e-12 of the largest. Scaled, the eigenpairs are those
 // of D G D with D = diag(G)^-1/2 (every stored solution of unit product), so that a small
 // solution's direction is judged by its own size, not by the largest one's.
