@@ -63,8 +63,7 @@ struct FaultContact::Impl {
   std::vector<std::uint8_t> owned_fixed;      // prescribed components of the owned nodes
   ContactStats stats;
 
-  int junctions = 0;             // junction groups over all ranks (PairData::junction)
-  std::vector<int> junction_open;  // per junction: a pair of its cycle slips or is open (this residual)
+  int junctions = 0;  // junction groups over all ranks (PairData::junction)
 
   PairLaw law(int q) const {
     const PairData& d = pairs.pairs[q];
@@ -74,9 +73,7 @@ struct FaultContact::Impl {
     L.cohesion = d.cohesion;
     L.mu = d.mu;
     L.active = d.active;
-    // The pair closing a cycle: where every pair of the cycle sticks its constraint follows from the
-    // others' and the weight only fixes the multipliers' circulation (contact.hpp).
-    L.regularization = !d.redundant ? 0.0 : junction_open[d.junction] ? opt.regularization : opt.closed_regularization;
+    L.regularization = 0;  // the pairs closing a cycle get theirs in residual(), from their cycle's state
     return L;
   }
 
@@ -99,7 +96,6 @@ struct FaultContact::Impl {
     m = pairs.m;
     for (int q = 0; q < m; ++q) junctions = std::max(junctions, pairs.pairs[q].junction + 1);
     MPI_Allreduce(MPI_IN_PLACE, &junctions, 1, MPI_INT, MPI_MAX, comm);
-    junction_open.assign(junctions, 0);
 
     lam.resize(m);
     for (int q = 0; q < m; ++q) lam[q] = {pairs.pairs[q].lam0[0], pairs.pairs[q].lam0[1], pairs.pairs[q].lam0[2]};
@@ -121,7 +117,6 @@ struct FaultContact::Impl {
   // ---- residual -------------------------------------------------------------------------------
   double residual(Vec u, Vec r) {
     const PetscScalar* ua = pairs.twins(u);
-    const std::vector<PairState> prev = junctions > 0 ? st_prev : std::vector<PairState>{};  // (for the second pass)
     double ss = 0;
     int changes = 0;
     for (int q = 0; q < m; ++q) {
@@ -141,18 +136,18 @@ struct FaultContact::Impl {
       st_prev[q] = st[q];
     }
     pairs.restore_twins(ua);
-    // The pairs closing a cycle take the weight of their cycle's state (the states above do not
-    // depend on it: it enters F only).
+    // The pair closing a cycle: where every pair of the cycle sticks its constraint follows from the
+    // others' and the weight only fixes the multipliers' circulation (contact.hpp); the states
+    // above do not depend on it.
     if (junctions > 0) {
-      std::vector<int> open(junctions, 0);
+      std::vector<int> open(junctions, 0), open_all(junctions, 0);
       for (int q = 0; q < m; ++q)
         if (pairs.pairs[q].junction >= 0 && st[q] != PairState::Stick) open[pairs.pairs[q].junction] = 1;
-      MPI_Allreduce(open.data(), junction_open.data(), junctions, MPI_INT, MPI_MAX, comm);
+      MPI_Allreduce(open.data(), open_all.data(), junctions, MPI_INT, MPI_MAX, comm);
       for (int q = 0; q < m; ++q) {
         const PairData& d = pairs.pairs[q];
-        if (!d.redundant) continue;
-        const std::array<double, 3> lam0{d.lam0[0], d.lam0[1], d.lam0[2]};
-        eq[q] = pair_equations(law(q), lam[q], lam0, lam_c[q], g[q], gc[q], d.p0 + dp_now[q], prev[q]);
+        if (d.redundant)
+          add_regularization(eq[q], open_all[d.junction] ? opt.regularization : opt.closed_regularization, d.area, lam[q], lam_c[q]);
       }
     }
     for (int q = 0; q < m; ++q)

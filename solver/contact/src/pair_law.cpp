@@ -89,16 +89,17 @@ PairEquations pair_equations(const PairLaw& L, const std::array<double, 3>& lam,
       e.Jl[3 * j + 2] = -A * dtau_dln * eh[j];
     }
   }
-  if (L.regularization > 0) {
-    // Redundant pair: its constraints are implied by the others; a perturbed-Lagrangian term
-    // keeps the multiplier determined (the constraint holds to regularization * dlambda / k).
-    for (int j = 0; j < 3; ++j)
-      if (e.Jg[4 * j] != 0 && e.Jl[4 * j] == 0) {
-        e.F[j] -= L.regularization * A * (lam[j] - lam_c[j]);
-        e.Jl[4 * j] = -L.regularization * A;
-      }
-  }
+  if (L.regularization > 0) add_regularization(e, L.regularization, A, lam, lam_c);
   return e;
+}
+
+void add_regularization(PairEquations& e, double weight, double area, const std::array<double, 3>& lam,
+                        const std::array<double, 3>& lam_c) {
+  for (int j = 0; j < 3; ++j)
+    if (e.Jg[4 * j] != 0 && e.Jl[4 * j] == 0) {
+      e.F[j] -= weight * area * (lam[j] - lam_c[j]);
+      e.Jl[4 * j] = -weight * area;
+    }
 }
 
 double safety_factor(double tau, double sn, double c, double mu, PairState state) {

@@ -52,6 +52,13 @@ PairEquations pair_equations(const PairLaw& law, const std::array<double, 3>& la
                              const std::array<double, 3>& lambda_c, const std::array<double, 3>& g,
                              const std::array<double, 3>& g_c, double p_f, PairState previous);
 
+// Redundant pair: its constraints are implied by the others; a perturbed-Lagrangian term on its
+// pure constraint rows keeps the multiplier determined (the constraint holds to weight * dlambda / k).
+// pair_equations adds it for law.regularization > 0; a caller that chooses the weight after the
+// pairs' states are known (they do not depend on it) adds it itself.
+void add_regularization(PairEquations& e, double weight, double area, const std::array<double, 3>& lambda,
+                        const std::array<double, 3>& lambda_c);
+
 // Safety factor chi = |tau| / (c - sigma'_n tan(phi)) (eq. 4.2) of a sticking pair; 1 where the
 // pair slips or is open, and where it carries shear it cannot carry (tau_L <= 0).
 double safety_factor(double tau, double sigma_n_eff, double cohesion, double mu, PairState state);
