@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <functional>
 #include <petscksp.h>
+#include "hypre_in_place.hpp"
 #include "local_mesh.hpp"
 #include "ugs/mechanics/reuse_rule.hpp"
 #include "petsc_check.hpp"
@@ -114,6 +115,9 @@ struct Assembler {
   // assembly every kFullAssemblyEvery updates keeps the sums fresh.
   static constexpr int kFullAssemblyEvery = 100;
   int updates_since_full = 0;
+  // Under BoomerAMG, the tangents are added straight into hypre's arrays (hypre_in_place.hpp).
+  HypreInPlace in_place;
+  bool in_place_bound = false;
 };
 
 // Preconditioner-reuse policy: what the last setup and solves cost, in iteration counts only
