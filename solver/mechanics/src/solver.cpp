@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "cell_gather.hpp"
 #include "solver_impl.hpp"
 
 namespace ugs::mech {
@@ -106,10 +107,7 @@ std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
   const LocalMesh& lm = s.lm;
   const bool tensor = field == CellField::Strain || field == CellField::Stress || field == CellField::StressChange;
   const int k = tensor ? 6 : 1;
-  const auto owned = static_cast<std::size_t>(
-      std::count_if(lm.cell_owned.begin(), lm.cell_owned.end(), [](std::uint8_t o) { return o != 0; }));
-  std::vector<double> values;
-  values.reserve(k * owned);
+  CellGather gather(lm, k);
   Vec ul = nullptr;
   const PetscScalar* ua = nullptr;
   if (tensor) {
@@ -128,12 +126,14 @@ std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
       s.gather_element(ua, c, ue);
       const Vec6 eps = fem::tet4_strain(s.geo[c], ue);
       if (field == CellField::Strain) {
-        for (double v : fem::strain_to_output(eps)) values.push_back(v);
+        const auto v = fem::strain_to_output(eps);
+        std::copy(v.begin(), v.end(), gather.next());
         continue;
       }
       const Vec6 ds = h < 0 ? s.elastic_stress(c, eps) : s.hyp.committed[h].dsig;
       if (field == CellField::StressChange) {
-        for (double v : fem::stress_to_output(ds)) values.push_back(v);
+        const auto v = fem::stress_to_output(ds);
+        std::copy(v.begin(), v.end(), gather.next());
         continue;
       }
       const auto& t = lm.cells[c];
@@ -141,21 +141,22 @@ std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
       const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]]);
       Vec6 tot;
       for (int j = 0; j < 6; ++j) tot[j] = s0[j] + ds[j];
-      for (double v : fem::stress_to_output(tot)) values.push_back(v);
+      const auto v = fem::stress_to_output(tot);
+      std::copy(v.begin(), v.end(), gather.next());
     } else if (field == CellField::Cm) {
-      values.push_back(h >= 0 ? s.hyp.committed_c[h] * 1e-6
-                              : (m.law == fem::Law::Linear ? fem::cm_from_ez(m.E_z, m.ratios) : 1.0 / s.inv_c0[c]));
+      *gather.next() = h >= 0 ? s.hyp.committed_c[h] * 1e-6
+                              : (m.law == fem::Law::Linear ? fem::cm_from_ez(m.E_z, m.ratios) : 1.0 / s.inv_c0[c]);
     } else if (field == CellField::State) {
-      values.push_back(h >= 0 ? static_cast<double>(static_cast<int>(s.hyp.committed_phase[h])) : 0.0);
+      *gather.next() = h >= 0 ? static_cast<double>(static_cast<int>(s.hyp.committed_phase[h])) : 0.0;
     } else {
-      values.push_back(h >= 0 ? s.hyp.committed[h].hypo.sigma_max * 1e6 : 0.0);
+      *gather.next() = h >= 0 ? s.hyp.committed[h].hypo.sigma_max * 1e6 : 0.0;
     }
   }
   if (tensor) {
     UGS_PETSC(VecRestoreArrayRead(ul, &ua));
     UGS_PETSC(VecGhostRestoreLocalForm(s.u, &ul));
   }
-  std::vector<double> out = s.gather_cells_k(std::move(values), k);
+  std::vector<double> out = gather.finish();
   PetscLogEventEnd(events().gather, 0, 0, 0, 0);
   return out;
 }
@@ -174,24 +175,25 @@ std::vector<double> MechanicsSolver::gather_state_field(StateField field) {
   Impl& s = *impl_;
   const LocalMesh& lm = s.lm;
   const int k = field == StateField::Dp ? 1 : field == StateField::Hypo ? 4 : 6;
-  std::vector<double> values;
+  CellGather gather(lm, k);
   for (std::size_t ci = 0; ci < lm.n_cells(); ++ci) {
     if (!lm.cell_owned[ci]) continue;
     const int h = s.hyp.of_cell[ci];
     const fem::PointState ps = h >= 0 ? s.hyp.committed[h] : fem::PointState{};
+    double* v = gather.next();
     switch (field) {
-      case StateField::Dp: values.push_back(s.dp_cell[ci]); break;
-      case StateField::Eps: values.insert(values.end(), ps.eps.begin(), ps.eps.end()); break;
-      case StateField::Dsig: values.insert(values.end(), ps.dsig.begin(), ps.dsig.end()); break;
+      case StateField::Dp: v[0] = s.dp_cell[ci]; break;
+      case StateField::Eps: std::copy(ps.eps.begin(), ps.eps.end(), v); break;
+      case StateField::Dsig: std::copy(ps.dsig.begin(), ps.dsig.end(), v); break;
       case StateField::Hypo:
-        values.push_back(ps.hypo.sigma_max);
-        values.push_back(ps.hypo.sigma_inv);
-        values.push_back(ps.hypo.direction);
-        values.push_back(h >= 0 ? s.hyp.last_ddp[h] : 0);
+        v[0] = ps.hypo.sigma_max;
+        v[1] = ps.hypo.sigma_inv;
+        v[2] = ps.hypo.direction;
+        v[3] = h >= 0 ? s.hyp.last_ddp[h] : 0;
         break;
     }
   }
-  return s.gather_cells_k(std::move(values), k);
+  return gather.finish();
 }
 
 void MechanicsSolver::restore_state(const SavedState& st) {

@@ -486,40 +486,6 @@ struct MechanicsSolver::Impl {
     return out;
   }
 
-  // Owned-cell values (k per cell) to output order on rank 0, rank by rank into place and in
-  // messages of kChunkCells cells: rank 0 holds the result and one message (6.3 MB for a tensor),
-  // not its own part and another rank's whole part beside it (at the thesis scale 2 x 68 MB on top
-  // of the 137 MB result, the peak of a run that writes stress fields).
-  std::vector<double> gather_cells_k(std::vector<double> owned, int k) const {
-    constexpr int kTag = 7301;
-    constexpr std::size_t kChunkCells = std::size_t{1} << 17;
-    const std::size_t chunk = kChunkCells * static_cast<std::size_t>(k);
-    if (lm.rank != 0) {
-      for (std::size_t lo = 0; lo < owned.size(); lo += chunk)
-        MPI_Send(owned.data() + lo, static_cast<int>(std::min(chunk, owned.size() - lo)), MPI_DOUBLE, 0, kTag, lm.comm);
-      return {};
-    }
-    std::vector<double> out(static_cast<std::size_t>(lm.n_global_cells) * k);
-    // n values: cells [first, first + n / k) of rank p's owned cells.
-    auto place = [&](const double* values, std::size_t n, int p, std::size_t first) {
-      const auto& cells = lm.owned_cells_of_rank[p];
-      for (std::size_t i = 0; i < n / k; ++i)
-        for (int c = 0; c < k; ++c) out[static_cast<std::size_t>(cells[first + i]) * k + c] = values[i * k + c];
-    };
-    place(owned.data(), owned.size(), 0, 0);
-    owned = {};
-    std::vector<double> part;
-    for (int p = 1; p < lm.size; ++p) {
-      const std::size_t n = lm.owned_cells_of_rank[p].size() * k;
-      for (std::size_t lo = 0; lo < n; lo += chunk) {
-        part.resize(std::min(chunk, n - lo));
-        MPI_Recv(part.data(), static_cast<int>(part.size()), MPI_DOUBLE, p, kTag, lm.comm, MPI_STATUS_IGNORE);
-        place(part.data(), part.size(), p, lo / k);
-      }
-    }
-    return out;
-  }
-
   std::vector<double> owned_u() const {
     std::vector<double> v(3 * lm.n_owned);
     const PetscScalar* a = nullptr;
