@@ -26,6 +26,12 @@ HYPRE_Int find(const T* b, const T* e, T key) {
   return p != e ? static_cast<HYPRE_Int>(p - b) : -1;
 }
 
+// find() with a position tried first (the entry after the last one found).
+template <class T>
+HYPRE_Int find_from(const T* b, const T* e, HYPRE_Int hint, T key) {
+  return hint >= 0 && hint < e - b && b[hint] == key ? hint : find(b, e, key);
+}
+
 }  // namespace
 
 bool HypreInPlace::bind(Mat A) {
@@ -71,34 +77,24 @@ bool HypreInPlace::add(PetscInt row, int n, const PetscInt* cols, const double* 
   // either block (but for the diagonal, first in its row): the entry after the last one found is
   // tried before a search.
   HYPRE_Complex* at[kMaxEntries];
-  HYPRE_Int d_next = -1, o_next = -1;  // position after the last entry found in diag / offd
+  HYPRE_Int d_next = -1, o_next = -1;  // in its row, the position after the last entry found in diag / offd
   HYPRE_Int c_next = -1;               // the offd column after the last one found
   for (int k = 0; k < n; ++k) {
     at[k] = nullptr;
     if (cols[k] < 0) continue;
     const HYPRE_BigInt j = cols[k] - first;
     if (j >= 0 && j < n_rows) {
-      const auto jl = static_cast<HYPRE_Int>(j);
-      HYPRE_Int pos = j == i ? di[i] : d_next;  // (the diagonal is first in hypre's rows)
-      if (!(pos >= di[i] && pos < di[i + 1] && dj[pos] == jl)) {
-        const HYPRE_Int q = find(dj + di[i], dj + di[i + 1], jl);
-        if (q < 0) return false;
-        pos = di[i] + q;
-      }
-      at[k] = hypre_CSRMatrixData(diag) + pos;
-      d_next = pos + 1;
+      // (The diagonal is first in hypre's rows.)
+      const HYPRE_Int q = find_from(dj + di[i], dj + di[i + 1], j == i ? 0 : d_next, static_cast<HYPRE_Int>(j));
+      if (q < 0) return false;
+      at[k] = hypre_CSRMatrixData(diag) + di[i] + q;
+      d_next = q + 1;
     } else {
-      HYPRE_Int c = c_next;
-      if (!(c >= 0 && c < n_offd && cmap[c] == cols[k])) c = n_offd > 0 ? find(cmap, cmap + n_offd, static_cast<HYPRE_BigInt>(cols[k])) : -1;
-      if (c < 0) return false;
-      HYPRE_Int pos = o_next;
-      if (!(pos >= oi[i] && pos < oi[i + 1] && oj[pos] == c)) {
-        const HYPRE_Int q = find(oj + oi[i], oj + oi[i + 1], c);
-        if (q < 0) return false;
-        pos = oi[i] + q;
-      }
-      at[k] = hypre_CSRMatrixData(offd) + pos;
-      o_next = pos + 1;
+      const HYPRE_Int c = n_offd > 0 ? find_from(cmap, cmap + n_offd, c_next, static_cast<HYPRE_BigInt>(cols[k])) : -1;
+      const HYPRE_Int q = c < 0 ? -1 : find_from(oj + oi[i], oj + oi[i + 1], o_next, c);
+      if (q < 0) return false;
+      at[k] = hypre_CSRMatrixData(offd) + oi[i] + q;
+      o_next = q + 1;
       c_next = c + 1;
     }
   }
