@@ -5,9 +5,10 @@
 
 namespace ugs::mech {
 
-CellGather::CellGather(const LocalMesh& lm, int k) : lm_(lm), k_(k) {
+CellGather::CellGather(const LocalMesh& lm, int k, std::size_t chunk_cells)
+    : lm_(lm), k_(k), chunk_(std::max<std::size_t>(chunk_cells, 1) * k) {
   if (lm.rank == 0) out_.resize(static_cast<std::size_t>(lm.n_global_cells) * k);
-  else out_.resize(kChunkCells * k);
+  else out_.resize(chunk_);
 }
 
 double* CellGather::next() {
@@ -29,7 +30,7 @@ std::vector<double> CellGather::finish() {
     std::vector<double>().swap(out_);
     return {};
   }
-  const std::size_t chunk = kChunkCells * k_;
+  const std::size_t chunk = chunk_;
   std::vector<double> part;
   for (int p = 1; p < lm_.size; ++p) {
     const auto& cells = lm_.owned_cells_of_rank[p];

@@ -15,18 +15,20 @@ namespace ugs::mech {
 
 class CellGather {
  public:
-  CellGather(const LocalMesh& lm, int k);
+  static constexpr std::size_t kChunkCells = std::size_t{1} << 17;
+  // k values per cell; messages of chunk_cells cells (the default: 6.3 MB for a tensor).
+  CellGather(const LocalMesh& lm, int k, std::size_t chunk_cells = kChunkCells);
   // Where the k values of the rank's next owned cell go (cells in the order of the local mesh).
   double* next();
   // Rank 0: the values of every cell in output order; the other ranks: {} (collective).
   std::vector<double> finish();
 
  private:
-  static constexpr std::size_t kChunkCells = std::size_t{1} << 17;
   static constexpr int kTag = 7301;
   void send();
   const LocalMesh& lm_;
   const int k_;
+  const std::size_t chunk_;   // values per message
   std::size_t next_ = 0;      // cells pushed so far (rank 0) / values in the buffer (others)
   std::vector<double> out_;   // rank 0: the result; the others: one message
 };
