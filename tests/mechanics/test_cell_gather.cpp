@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "cell_gather.hpp"
-#include "ugs/mechanics/petsc_session.hpp"
+#include "mpi_gtest_main.hpp"
 
 namespace {
 
@@ -58,12 +58,4 @@ TEST(CellGather, EveryValueAtItsOutputPlace) {
     }
 }
 
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ugs::mech::PetscSession petsc;
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  ::testing::TestEventListeners& listeners = ::testing::UnitTest::GetInstance()->listeners();
-  if (rank != 0) delete listeners.Release(listeners.default_result_printer());
-  return RUN_ALL_TESTS();
-}
+int main(int argc, char** argv) { return ugs::test::run_mpi_gtests(argc, argv); }
