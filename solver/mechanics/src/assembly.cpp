@@ -152,7 +152,7 @@ void MechanicsSolver::Impl::assemble() {
   PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
   if (full) {
     upload_linear();
-    assembler.in_place_bound = assembler.in_place.bind(A);
+    assembler.in_place.bind(A);
     for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
       add_to_matrix(hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], tangent(h)));
       assembler.assembled_Dt[h] = tangent(h);
@@ -160,7 +160,7 @@ void MechanicsSolver::Impl::assemble() {
     }
     assembler.updates_since_full = 0;
   } else {
-    assembler.in_place_bound = assembler.in_place.bind(A);
+    assembler.in_place.bind(A);
     for (const auto h : stale) {
       fem::Mat6 dD;
       for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembler.assembled_Dt[h][i];
@@ -327,7 +327,7 @@ void MechanicsSolver::Impl::add_to_matrix(int c, const std::array<double, 144>& 
       cols[3 * i + ci] = fixed ? -1 : g;
       rows[3 * i + ci] = fixed || t[i] >= lm.n_owned ? -1 : g;
     }
-  if (assembler.in_place_bound) {
+  if (assembler.in_place.bound()) {
     // Row by row straight into hypre's arrays; a row the writer cannot place (it adds nothing
     // then) goes through PETSc, which reports what is wrong with it.
     for (int r = 0; r < 12; ++r)

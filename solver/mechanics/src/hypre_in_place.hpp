@@ -17,6 +17,7 @@ class HypreInPlace {
   // Binds to A's ParCSR arrays if A is a MATHYPRE (with hypre's own layout: the diagonal block
   // square, the off-diagonal block's columns increasing). False: not bound.
   bool bind(Mat A);
+  bool bound() const { return ok_; }
   // a(row, cols[k]) += v[k] for the cols[k] >= 0 (at most kMaxEntries), row global and owned. False,
   // with nothing added, if not bound or an entry is not in the pattern (then use MatSetValues).
   bool add(PetscInt row, int n, const PetscInt* cols, const double* v) const;

@@ -117,7 +117,6 @@ struct Assembler {
   int updates_since_full = 0;
   // Under BoomerAMG, the tangents are added straight into hypre's arrays (hypre_in_place.hpp).
   HypreInPlace in_place;
-  bool in_place_bound = false;
 };
 
 // Preconditioner-reuse policy: what the last setup and solves cost, in iteration counts only
