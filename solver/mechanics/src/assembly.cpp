@@ -150,9 +150,9 @@ void MechanicsSolver::Impl::assemble() {
   MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, lm.comm);
   if (!any) return;
   PetscLogEventBegin(events().assembly, 0, 0, 0, 0);
+  if (full) upload_linear();
+  assembler.in_place.bind(A);
   if (full) {
-    upload_linear();
-    assembler.in_place.bind(A);
     for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
       add_to_matrix(hyp.cells[h], fem::tet4_stiffness(geo[hyp.cells[h]], tangent(h)));
       assembler.assembled_Dt[h] = tangent(h);
@@ -160,7 +160,6 @@ void MechanicsSolver::Impl::assemble() {
     }
     assembler.updates_since_full = 0;
   } else {
-    assembler.in_place.bind(A);
     for (const auto h : stale) {
       fem::Mat6 dD;
       for (int i = 0; i < 36; ++i) dD[i] = tangent(h)[i] - assembler.assembled_Dt[h][i];

@@ -30,13 +30,12 @@ std::vector<double> CellGather::finish() {
     std::vector<double>().swap(out_);
     return {};
   }
-  const std::size_t chunk = chunk_;
   std::vector<double> part;
   for (int p = 1; p < lm_.size; ++p) {
     const auto& cells = lm_.owned_cells_of_rank[p];
     const std::size_t n = cells.size() * k_;
-    for (std::size_t lo = 0; lo < n; lo += chunk) {
-      part.resize(std::min(chunk, n - lo));
+    for (std::size_t lo = 0; lo < n; lo += chunk_) {
+      part.resize(std::min(chunk_, n - lo));
       MPI_Recv(part.data(), static_cast<int>(part.size()), MPI_DOUBLE, p, kTag, lm_.comm, MPI_STATUS_IGNORE);
       const std::size_t first = lo / k_;
       for (std::size_t i = 0; i < part.size() / k_; ++i)
