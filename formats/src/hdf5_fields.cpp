@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -30,6 +31,8 @@ constexpr unsigned kDeflateLevel = 1;      // speed over size
 // A dataset claiming more bytes than zlib could expand its storage to is damaged (zlib's ratio
 // is at most about 1032:1); refuse it before allocating.
 constexpr hsize_t kMaxExpansion = 1100;
+// The most components a field may have (a full 3 x 3 tensor has 9).
+constexpr hsize_t kMaxComponents = 64;
 
 const char* dataset_name(ElementType t) {
   switch (t) {
@@ -104,6 +107,14 @@ std::string base_name(const std::string& p) {
 
 std::string step_group(std::size_t index) { return fmt::format("{:06}", index); }
 
+// Whether every byte is zero (a double's +0.0; -0.0 is written).
+bool all_zero_bytes(const unsigned char* p, std::size_t n) {
+  static constexpr unsigned char kZeros[4096] = {};
+  for (std::size_t k = 0; k < n; k += sizeof kZeros)
+    if (std::memcmp(p + k, kZeros, std::min(n - k, sizeof kZeros)) != 0) return false;
+  return true;
+}
+
 }  // namespace
 
 // ---- writer -----------------------------------------------------------------------------------
@@ -123,6 +134,24 @@ struct FieldSeriesWriter::Impl {
   Impl(const std::string& path, const Mesh& mesh, std::vector<ElementType> cell_types)
       : h5_path(path), xdmf_path(xdmf_path_for(path)), h5_name(base_name(path)), h5_out(path),
         types(std::move(cell_types)) {
+    create_file();
+    write_mesh(mesh);
+    steps_group = group(file.get(), "steps");
+  }
+
+  Impl(const std::string& path, const Impl& source)
+      : h5_path(path), xdmf_path(xdmf_path_for(path)), h5_name(base_name(path)), h5_out(path), types(source.types),
+        num_nodes(source.num_nodes), num_cells(source.num_cells), mixed_length(source.mixed_length),
+        topology_types(source.topology_types) {
+    if (source.committed) throw std::logic_error("field series: the mesh source is committed");
+    create_file();
+    h5::Id lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+    check(lcpl.valid() && H5Ocopy(source.file.get(), "mesh", file.get(), "mesh", H5P_DEFAULT, lcpl.get()) >= 0,
+          fmt::format("cannot copy the mesh of {}", source.h5_path));
+    steps_group = group(file.get(), "steps");
+  }
+
+  void create_file() {
     gcpl = h5::Id(H5Pcreate(H5P_GROUP_CREATE), H5Pclose);
     check(gcpl.valid() && H5Pset_obj_track_times(gcpl.get(), false) >= 0, "cannot set up group properties");
     h5::Id fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
@@ -130,8 +159,6 @@ struct FieldSeriesWriter::Impl {
     file = h5::Id(H5Fcreate(h5_out.temp_path().c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT), H5Fclose);
     check(file.valid(), "cannot create HDF5 file");
     string_attribute(file.get(), "ugs_format", kFormatTag);
-    write_mesh(mesh);
-    steps_group = group(file.get(), "steps");
   }
 
   [[noreturn]] void fail(const std::string& what) const {
@@ -151,8 +178,13 @@ struct FieldSeriesWriter::Impl {
   // A chunked dataset of `rows` values, or rows x cols when cols > 0; shuffled and deflated where
   // that shrinks it well (deflate_probe.hpp): full-precision stresses shrink by ~20 % for most of
   // the writing time (thesis-scale output date: 16 s of 19 s in zlib).
+  //
+  // A step's field (`sparse`) leaves out the chunks whose values are all +0.0: HDF5 reads a chunk
+  // that was never written as its fill value, zero, and the state's strain and stress changes are
+  // zero outside the hypo-plastic cells (a linear model's are zero everywhere). Mesh arrays are
+  // always stored whole: the reader bounds every field by the mesh's counts before allocating.
   void dataset(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
-               hsize_t rows, hsize_t cols = 0) {
+               hsize_t rows, hsize_t cols = 0, bool sparse = false) {
     const int rank = cols ? 2 : 1;
     const hsize_t dims[2] = {rows, cols};
     h5::Id space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
@@ -170,9 +202,26 @@ struct FieldSeriesWriter::Impl {
     }
     h5::Id ds(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose);
     check(ds.valid(), fmt::format("cannot create dataset '{}'", name));
-    if (rows > 0)
+    if (rows == 0) return;
+    if (!sparse) {
       check(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0,
             fmt::format("cannot write dataset '{}'", name));
+      return;
+    }
+    const hsize_t chunk_rows = std::clamp<hsize_t>(kChunkValues / std::max<hsize_t>(cols, 1), 1, rows);
+    const std::size_t row_bytes = std::max<hsize_t>(cols, 1) * H5Tget_size(mem_type);
+    for (hsize_t r0 = 0; r0 < rows; r0 += chunk_rows) {
+      const hsize_t n = std::min(chunk_rows, rows - r0);
+      const auto* p = static_cast<const unsigned char*>(data) + r0 * row_bytes;
+      if (all_zero_bytes(p, n * row_bytes)) continue;
+      const hsize_t start[2] = {r0, 0}, count[2] = {n, cols};
+      h5::Id file_space(H5Dget_space(ds.get()), H5Sclose);
+      h5::Id mem_space(H5Screate_simple(rank, count, nullptr), H5Sclose);
+      check(file_space.valid() && mem_space.valid() &&
+                H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr) >= 0 &&
+                H5Dwrite(ds.get(), mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, p) >= 0,
+            fmt::format("cannot write dataset '{}'", name));
+    }
   }
 
   void string_attribute(hid_t loc, const char* name, const std::string& value) {
@@ -203,6 +252,12 @@ struct FieldSeriesWriter::Impl {
 
     std::vector<std::string> names;
     std::vector<std::uint32_t> mixed;
+    // XDMF's "Mixed" topology only when cells of several types are written: a volume without
+    // interface prisms is indexed by its tetrahedra (no copy of them, 5 values a cell, to deflate).
+    for (ElementType t : types)
+      if (mesh.count(t) > 0) topology_types.push_back(t);
+    if (topology_types.empty()) topology_types.push_back(types.front());
+    const bool mixed_topology = topology_types.size() > 1;
     for (ElementType t : types) {
       std::vector<std::uint32_t> conn;
       for (const ElementBlock& b : mesh.blocks)
@@ -210,14 +265,14 @@ struct FieldSeriesWriter::Impl {
       const hsize_t npe = nodes_per_element(t), n = conn.size() / npe;
       dataset(g.get(), dataset_name(t), H5T_STD_U32LE, H5T_NATIVE_UINT32, conn.data(), n, npe);
       names.push_back(dataset_name(t));
-      if (types.size() > 1)
+      if (mixed_topology)
         for (hsize_t i = 0; i < n; ++i) {
           mixed.push_back(xdmf_mixed_code(t));
           mixed.insert(mixed.end(), conn.begin() + i * npe, conn.begin() + (i + 1) * npe);
         }
     }
     string_attribute(g.get(), "cell_types", fmt::format("{}", fmt::join(names, ",")));
-    if (types.size() > 1) {
+    if (mixed_topology) {
       dataset(g.get(), "mixed_topology", H5T_STD_U32LE, H5T_NATIVE_UINT32, mixed.data(), mixed.size());
       mixed_length = mixed.size();
     }
@@ -252,7 +307,7 @@ struct FieldSeriesWriter::Impl {
       h5::Id sub = group(g.get(), kind);
       for (const Field& f : fields) {
         dataset(sub.get(), f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.values.data(), f.count(),
-                f.components == 1 ? 0 : f.components);
+                f.components == 1 ? 0 : f.components, true);
         infos->push_back({f.name, f.components});
       }
     }
@@ -270,7 +325,7 @@ struct FieldSeriesWriter::Impl {
     h5::Id sub(H5Gopen2(steps_group.get(), path.c_str(), H5P_DEFAULT), H5Gclose);
     check(sub.valid(), fmt::format("cannot open group '{}'", path));
     dataset(sub.get(), f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.values.data(), f.count(),
-            f.components == 1 ? 0 : f.components);
+            f.components == 1 ? 0 : f.components, true);
     step.cell.push_back({f.name, f.components});
   }
 
@@ -282,12 +337,13 @@ struct FieldSeriesWriter::Impl {
   void xdmf_grid(std::string& x, const std::string& name, const Step* step, std::string_view in) const {
     x += fmt::format("{}<Grid Name=\"{}\" GridType=\"Uniform\">\n", in, xml_escape(name));
     if (step) x += fmt::format("{}  <Time Value=\"{}\"/>\n", in, step->time);
-    if (types.size() == 1) {
-      const int npe = nodes_per_element(types[0]);
+    if (topology_types.size() == 1) {
+      const ElementType t = topology_types[0];
+      const int npe = nodes_per_element(t);
       x += fmt::format("{}  <Topology TopologyType=\"{}\" NumberOfElements=\"{}\" NodesPerElement=\"{}\">\n", in,
-                       xdmf_topology(types[0]), num_cells, npe);
+                       xdmf_topology(t), num_cells, npe);
       x += fmt::format("{}    {}\n", in, data_item(fmt::format("{} {}", num_cells, npe), "UInt", 4,
-                                                   fmt::format("/mesh/{}", dataset_name(types[0]))));
+                                                   fmt::format("/mesh/{}", dataset_name(t))));
     } else {
       x += fmt::format("{}  <Topology TopologyType=\"Mixed\" NumberOfElements=\"{}\">\n", in, num_cells);
       x += fmt::format("{}    {}\n", in, data_item(fmt::format("{}", mixed_length), "UInt", 4, "/mesh/mixed_topology"));
@@ -346,13 +402,18 @@ struct FieldSeriesWriter::Impl {
   h5::Id gcpl, file, steps_group;
   std::vector<ElementType> types;
   std::size_t num_nodes = 0, num_cells = 0, mixed_length = 0;
+  std::vector<ElementType> topology_types;  // the written types that have cells (XDMF topology)
   std::vector<Step> steps;
   bool committed = false;
 };
 
 namespace {
-std::vector<ElementType> checked_types(const std::string& path, const Mesh& mesh, const FieldSeriesOptions& options) {
+void check_h5_path(const std::string& path) {
   if (path.empty() || path == "-") throw InputError(path, "HDF5 output needs a file name, not stdout");
+}
+
+std::vector<ElementType> checked_types(const std::string& path, const Mesh& mesh, const FieldSeriesOptions& options) {
+  check_h5_path(path);
   std::vector<ElementType> types = options.cell_types.empty() ? default_output_cell_types(mesh) : options.cell_types;
   for (std::size_t i = 0; i < types.size(); ++i) {
     dataset_name(types[i]);  // throws for types we cannot write
@@ -368,6 +429,12 @@ FieldSeriesWriter::FieldSeriesWriter(const std::string& h5_path, const Mesh& mes
   std::vector<ElementType> types = checked_types(h5_path, mesh, options);
   h5::QuietErrors quiet;
   impl_ = std::make_unique<Impl>(h5_path, mesh, std::move(types));
+}
+
+FieldSeriesWriter::FieldSeriesWriter(const std::string& h5_path, const FieldSeriesWriter& mesh_source) {
+  check_h5_path(h5_path);
+  h5::QuietErrors quiet;
+  impl_ = std::make_unique<Impl>(h5_path, *mesh_source.impl_);
 }
 
 FieldSeriesWriter::~FieldSeriesWriter() {
@@ -466,8 +533,13 @@ struct FieldSeriesReader::Impl {
   }
 
   // All values of a dataset, converted to `mem_type` by HDF5; `out_dims` receives its shape.
+  // `mesh_rows` (a field's node or cell count, from the mesh's arrays, which are stored whole):
+  // the rows the dataset must have, checked before anything is allocated; a field's chunks of
+  // zeros are not stored (dataset() of the writer), so its size is bounded by the mesh instead of
+  // by what its storage could expand to.
   template <class T>
-  std::vector<T> read(const std::string& name, hid_t mem_type, std::vector<hsize_t>* out_dims = nullptr) const {
+  std::vector<T> read(const std::string& name, hid_t mem_type, std::vector<hsize_t>* out_dims = nullptr,
+                      std::optional<hsize_t> mesh_rows = std::nullopt) const {
     h5::Id ds(H5Dopen2(file.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     if (!ds.valid()) fail(fmt::format("no dataset {}", name));
     const std::vector<hsize_t> d = dims(ds.get(), name);
@@ -488,8 +560,11 @@ struct FieldSeriesReader::Impl {
                          fmt::join(std::span(chunk, static_cast<std::size_t>(std::clamp(rank, 0, 2))), " x "),
                          fmt::join(d, " x ")));
     }
+    if (mesh_rows && (d.empty() || d[0] != *mesh_rows || (d.size() == 2 && d[1] > kMaxComponents)))
+      fail(fmt::format("{}: {} values{} (expected {} of at most {} components)", name, d.empty() ? 0 : d[0],
+                       d.size() == 2 ? fmt::format(" of {} components", d[1]) : "", *mesh_rows, kMaxComponents));
     const hsize_t bytes = count * H5Tget_size(type.get());
-    if (bytes > kMaxExpansion * H5Dget_storage_size(ds.get()) + (1 << 20))
+    if (!mesh_rows && bytes > kMaxExpansion * H5Dget_storage_size(ds.get()) + (1 << 20))
       fail(fmt::format("{} claims {} values but stores only {} bytes (damaged file?)", name, count,
                        H5Dget_storage_size(ds.get())));
     std::vector<T> v(count);
@@ -587,10 +662,10 @@ struct FieldSeriesReader::Impl {
                                          names.empty() ? "" : fmt::format(" ({} fields: ", kind),
                                          names.empty() ? "" : fmt::format("{})", fmt::join(names, ", "))));
     const std::string where = fmt::format("/steps/{}/{}/{}", groups[step], kind, name);
-    std::vector<hsize_t> d;
-    Field f{name, 1, read<double>(where, H5T_NATIVE_DOUBLE, &d)};
+    std::vector<hsize_t> d = dims(where);
     if (d.empty() || d[0] != count)
       fail(fmt::format("{}: {} values, the mesh has {} {}s", where, d.empty() ? 0 : d[0], count, kind));
+    Field f{name, 1, read<double>(where, H5T_NATIVE_DOUBLE, &d, count)};
     if (d.size() == 2) f.components = static_cast<int>(d[1]);
     return f;
   }

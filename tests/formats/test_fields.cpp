@@ -15,8 +15,10 @@
 #include <XdmfTopologyType.hpp>
 #include <XdmfUnstructuredGrid.hpp>
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <functional>
 
 #include "input_error.hpp"
@@ -187,6 +189,117 @@ TEST(UGS_FIELDS_SUITE, SingleTypeTopologies) {
     for (unsigned i = 0; i < conn.size(); ++i) EXPECT_EQ(topo->getValue<unsigned>(i), conn[i]);
     expect_xdmf_attribute(g, s.cell[1][0], XdmfAttributeCenter::Cell());
   }
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// A cloud of `n` nodes on a line with one tetrahedron: node fields of several chunks.
+Mesh many_node_mesh(std::size_t n) {
+  Mesh m;
+  for (std::size_t i = 0; i < n; ++i) m.add_node({static_cast<double>(i), (i % 3) * 1.0, (i % 5) * 1.0}, i + 1);
+  const std::uint32_t tet[4] = {0, 1, 3, 6};
+  m.add_element(m.block(3, m.entity_for_physical(3, "mat:rock"), ElementType::Tetrahedron), tet);
+  m.update_entity_bboxes();
+  return m;
+}
+
+// HDF5's bytes of stored (deflated) data of a dataset.
+hsize_t storage_size(const fs::path& h5, const std::string& dataset) {
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t d = H5Dopen2(f, dataset.c_str(), H5P_DEFAULT);
+  const hsize_t n = H5Dget_storage_size(d);
+  H5Dclose(d);
+  H5Fclose(f);
+  return n;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+// A step's field leaves its chunks of zeros out (HDF5 reads them as the fill value, zero): values
+// read back bit for bit, -0.0 included, through our reader and through libxdmf.
+TEST(UGS_FIELDS_SUITE, ChunksOfZerosAreNotStored) {
+  const auto dir = test::temp_dir("fields-sparse");
+  const std::size_t n = 100000;  // 3 components: 300,000 values, 5 chunks of 65,536 values
+  const Mesh m = many_node_mesh(n);
+  Field zero{"zero", 1, std::vector<double>(n, 0.0)};
+  Field u{"u", 3, std::vector<double>(3 * n, 0.0)};
+  for (std::size_t i = 30000; i < 30010; ++i) u.values[3 * i + 1] = 1.0 / (1.0 + static_cast<double>(i));  // chunk 1
+  u.values[3 * 99999 + 2] = -0.0;                                                                         // the last chunk
+  Field dense = test::sample_field("dense", 3, n, 0, 0.5);
+  {
+    FieldSeriesWriter w((dir / "s.h5").string(), m);
+    w.add_step("2000-01-01", 0, std::vector<Field>{zero, u, dense});
+    w.commit();
+  }
+  EXPECT_EQ(storage_size(dir / "s.h5", "/steps/000000/node/zero"), 0u);
+  const hsize_t su = storage_size(dir / "s.h5", "/steps/000000/node/u");
+  EXPECT_GT(su, 0u);
+  EXPECT_LT(su, storage_size(dir / "s.h5", "/steps/000000/node/dense") / 2);
+  FieldSeriesReader r((dir / "s.h5").string());
+  for (const Field* f : {&zero, &u, &dense}) {
+    const Field back = r.node_field(0, f->name);
+    EXPECT_EQ(back.components, f->components);
+    EXPECT_TRUE(same_bits(back.values, f->values)) << f->name;
+  }
+  EXPECT_TRUE(std::signbit(r.node_field(0, "u").values[3 * 99999 + 2]));
+  auto g = read_xdmf(dir / "s.xdmf")->getGridCollection(0)->getUnstructuredGrid(0);
+  expect_xdmf_attribute(g, u, XdmfAttributeCenter::Node());
+  expect_xdmf_attribute(g, zero, XdmfAttributeCenter::Node());
+  fs::remove_all(dir);
+}
+
+// The restart state beside the results: the mesh copied from the open results writer reads back
+// as the mesh itself, and its index is the results' one.
+TEST(UGS_FIELDS_SUITE, MeshCopiedFromAnOpenWriter) {
+  const auto dir = test::temp_dir("fields-copy");
+  const Mesh m = test::faulted_cube_mesh();
+  FieldSeriesWriter results((dir / "r.h5").string(), m);
+  {
+    FieldSeriesWriter copy((dir / "c.h5").string(), results);
+    EXPECT_EQ(copy.cell_count(), results.cell_count());
+    const std::vector<Field> node = {test::sample_field("u", 3, m.num_nodes(), 0, -7.0)};
+    const std::vector<Field> cell = {test::sample_field("chi", 1, copy.cell_count(), 0, 0.1)};
+    copy.add_step(kDates[0], kTimes[0], node, cell);
+    copy.commit();
+    results.add_step(kDates[0], kTimes[0], node, cell);
+  }
+  EXPECT_THROW(FieldSeriesWriter("-", results), InputError);
+  results.commit();
+  EXPECT_THROW(FieldSeriesWriter((dir / "late.h5").string(), results), std::logic_error);
+  FieldSeriesReader a((dir / "r.h5").string()), b((dir / "c.h5").string());
+  EXPECT_EQ(b.node_tags(), m.node_tags);
+  EXPECT_EQ(b.coordinates(), m.nodes);
+  EXPECT_EQ(b.cell_types(), a.cell_types());
+  EXPECT_EQ(b.cells(ElementType::Tetrahedron), connectivity(m, ElementType::Tetrahedron));
+  EXPECT_EQ(b.cells(ElementType::Prism), connectivity(m, ElementType::Prism));
+  EXPECT_EQ(b.cell_tags(), a.cell_tags());
+  EXPECT_EQ(b.materials(), a.materials());
+  expect_same(b.cell_field(0, "chi"), a.cell_field(0, "chi"));
+  std::string xa = test::slurp(dir / "r.xdmf"), xb = test::slurp(dir / "c.xdmf");
+  for (std::size_t at = xa.find("r.h5:"); at != std::string::npos; at = xa.find("r.h5:", at)) xa.replace(at, 1, "c");
+  xa.replace(xa.find("Name=\"r\""), 8, "Name=\"c\"");
+  EXPECT_EQ(xa, xb);
+  fs::remove_all(dir);
+}
+
+// A volume without interface prisms: its XDMF topology is its tetrahedra, no "Mixed" copy.
+TEST(UGS_FIELDS_SUITE, OneTypeWithCellsIsNotMixed) {
+  const auto dir = test::temp_dir("fields-onetype");
+  const Mesh m = test::unit_cube_mesh();  // tetrahedra and boundary triangles, no prisms
+  const Series s = write_series(dir / "t.h5", m);
+  FieldSeriesReader r((dir / "t.h5").string());
+  EXPECT_EQ(r.cell_types(), (std::vector<ElementType>{ElementType::Tetrahedron, ElementType::Prism}));
+  EXPECT_EQ(r.cells(ElementType::Tetrahedron), connectivity(m, ElementType::Tetrahedron));
+  EXPECT_EQ(test::slurp(dir / "t.xdmf").find("mixed_topology"), std::string::npos);
+  auto g = read_xdmf(dir / "t.xdmf")->getGridCollection(0)->getUnstructuredGrid(2);
+  EXPECT_EQ(g->getTopology()->getType(), XdmfTopologyType::Tetrahedron());
+  EXPECT_EQ(g->getTopology()->getNumberElements(), 6u);
+  expect_xdmf_attribute(g, s.cell[2][0], XdmfAttributeCenter::Cell());
   fs::remove_all(dir);
 }
 

@@ -318,6 +318,11 @@ private:
     std::unique_ptr<mech::StateFileWriter> w;
     mech::collective(comm_, [&] {
       if (rank_ != 0) return;
+      // The results hold the same mesh and cell types (OutputSet): their stored arrays are copied.
+      if (root_->out) {
+        w = std::make_unique<mech::StateFileWriter>(*o_.state, root_->out->results(), date, time, std::move(u));
+        return;
+      }
       FieldSeriesOptions vol;
       if (faulted()) vol.cell_types = {ElementType::Tetrahedron};
       w = std::make_unique<mech::StateFileWriter>(*o_.state, root_->mesh, date, time, std::move(u), vol);

@@ -35,6 +35,13 @@ StateFileWriter::StateFileWriter(const std::string& path, const Mesh& mesh, cons
   w_.add_step(date, time, nodes);
 }
 
+StateFileWriter::StateFileWriter(const std::string& path, const FieldSeriesWriter& mesh_source, const std::string& date,
+                                 double time, std::vector<double> u)
+    : w_(path, mesh_source) {
+  const Field nodes[] = {{"u", 3, std::move(u)}};
+  w_.add_step(date, time, nodes);
+}
+
 void StateFileWriter::add(StateField field, std::vector<double> values) {
   if (next_ >= std::size(kStateFields) || kStateFields[next_] != field)
     throw std::logic_error("StateFileWriter: state fields added out of order");

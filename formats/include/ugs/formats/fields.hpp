@@ -35,6 +35,10 @@ public:
   // Writes `h5_path` and the XDMF beside it (".h5" replaced by ".xdmf") as temporaries; the mesh
   // goes in now, so `mesh` need not outlive the writer. Throws InputError for "-" (HDF5 needs a file).
   FieldSeriesWriter(const std::string& h5_path, const Mesh& mesh, const FieldSeriesOptions& options = {});
+  // The same with the mesh of `mesh_source`, a writer not yet committed: HDF5 copies its stored
+  // (deflated) arrays as they are instead of deflating the mesh again (the restart state beside
+  // the results of a large model). std::logic_error if `mesh_source` is committed.
+  FieldSeriesWriter(const std::string& h5_path, const FieldSeriesWriter& mesh_source);
   // Without commit(), removes both temporaries: a failed run leaves nothing.
   ~FieldSeriesWriter();
   FieldSeriesWriter(const FieldSeriesWriter&) = delete;

@@ -38,6 +38,8 @@ public:
   const std::vector<mech::CellField>& cell_fields() const { return cell_fields_; }
   void add_cell_field(mech::CellField field, std::vector<double> values);
   contact::FaultOutput* faults() { return faults_.get(); }
+  // The volume results' writer (its mesh is the restart state's).
+  const FieldSeriesWriter& results() const { return *results_; }
   void commit();
 
 private:

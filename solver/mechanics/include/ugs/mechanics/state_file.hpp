@@ -21,6 +21,10 @@ class StateFileWriter {
 public:
   StateFileWriter(const std::string& path, const Mesh& mesh, const std::string& date, double time,
                   std::vector<double> u, const FieldSeriesOptions& options = {});
+  // The mesh copied from an open writer of the same mesh and cell types (the run's results): the
+  // same arrays, not deflated again.
+  StateFileWriter(const std::string& path, const FieldSeriesWriter& mesh_source, const std::string& date, double time,
+                  std::vector<double> u);
   void add(StateField field, std::vector<double> values);
   void commit();
 
