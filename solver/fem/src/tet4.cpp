@@ -73,14 +73,27 @@ void tet4_add_internal_force(const Tet4& t, const Vec6& s, double* f) {
 }
 
 std::array<double, 144> tet4_stiffness(const Tet4& t, const Mat6& D) {
-  const auto B = tet4_strain_matrix(t);
+  // K = V B^T D B with B's three nonzeros per column (tet4_strain_matrix): the products skip B's
+  // zeros, which the dense product adds as +-0 to a sum begun at +0 and so leaves unchanged, and
+  // take the others in the same order: the dense product's bits at half its work.
+  int rows[12][3];
+  double vals[12][3];
+  auto column = [&](int j, int r0, int r1, int r2, double v0, double v1, double v2) {
+    rows[j][0] = r0, rows[j][1] = r1, rows[j][2] = r2;  // increasing, as the dense sum runs
+    vals[j][0] = v0, vals[j][1] = v1, vals[j][2] = v2;
+  };
+  for (int i = 0; i < 4; ++i) {
+    const double bx = t.grad[i][0], by = t.grad[i][1], bz = t.grad[i][2];
+    column(3 * i, XX, XZ, XY, bx, bz, by);
+    column(3 * i + 1, YY, YZ, XY, by, bz, bx);
+    column(3 * i + 2, ZZ, YZ, XZ, bz, by, bx);
+  }
   const double v = std::abs(t.volume);
-  // DB = D * B (6 x 12), then K = V B^T (DB); B is sparse but the dense product is cheap enough.
-  double DB[72];
+  double DB[72];  // D * B (6 x 12)
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 12; ++j) {
       double s = 0;
-      for (int k = 0; k < 6; ++k) s += D[6 * i + k] * B[12 * k + j];
+      for (int q = 0; q < 3; ++q) s += D[6 * i + rows[j][q]] * vals[j][q];
       DB[12 * i + j] = s;
     }
   // D need not be symmetric (the consistent hypo-plastic tangent is not): every entry is formed.
@@ -88,7 +101,7 @@ std::array<double, 144> tet4_stiffness(const Tet4& t, const Mat6& D) {
   for (int i = 0; i < 12; ++i)
     for (int j = 0; j < 12; ++j) {
       double s = 0;
-      for (int k = 0; k < 6; ++k) s += B[12 * k + i] * DB[12 * k + j];
+      for (int q = 0; q < 3; ++q) s += vals[i][q] * DB[12 * rows[i][q] + j];
       K[12 * i + j] = v * s;
     }
   return K;

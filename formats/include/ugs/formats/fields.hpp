@@ -8,9 +8,10 @@
 //   /mesh/tetrahedra | triangles | prisms  (cells of that type x nodes per cell, uint32, 0-based
 //                       node indices), attribute cell_types on /mesh lists them in output order
 //   /mesh/cell_tags, /mesh/material  (cells, uint64 / int32) in output order (see field.hpp)
-//   /mesh/mixed_topology  (XDMF "Mixed" encoding, only when several cell types are written)
+//   /mesh/mixed_topology  (XDMF "Mixed" encoding, only when cells of several types are written)
 //   /steps/000012       attributes date (ISO 8601 text) and time (seconds)
-//   /steps/000012/node/<field>, /steps/000012/cell/<field>  (count, or count x components, float64)
+//   /steps/000012/node/<field>, /steps/000012/cell/<field>  (count, or count x components, float64;
+//                       chunks of +0.0 are not stored: HDF5 reads them as the fill value, zero)
 #pragma once
 #include <cstdint>
 #include <memory>
