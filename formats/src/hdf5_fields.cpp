@@ -31,8 +31,6 @@ constexpr unsigned kDeflateLevel = 1;      // speed over size
 // A dataset claiming more bytes than zlib could expand its storage to is damaged (zlib's ratio
 // is at most about 1032:1); refuse it before allocating.
 constexpr hsize_t kMaxExpansion = 1100;
-// The most components a field may have (a full 3 x 3 tensor has 9).
-constexpr hsize_t kMaxComponents = 64;
 
 const char* dataset_name(ElementType t) {
   switch (t) {
@@ -560,9 +558,9 @@ struct FieldSeriesReader::Impl {
                          fmt::join(std::span(chunk, static_cast<std::size_t>(std::clamp(rank, 0, 2))), " x "),
                          fmt::join(d, " x ")));
     }
-    if (mesh_rows && (d.empty() || d[0] != *mesh_rows || (d.size() == 2 && d[1] > kMaxComponents)))
+    if (mesh_rows && (d.empty() || d[0] != *mesh_rows || (d.size() == 2 && d[1] > static_cast<hsize_t>(kMaxFieldComponents))))
       fail(fmt::format("{}: {} values{} (expected {} of at most {} components)", name, d.empty() ? 0 : d[0],
-                       d.size() == 2 ? fmt::format(" of {} components", d[1]) : "", *mesh_rows, kMaxComponents));
+                       d.size() == 2 ? fmt::format(" of {} components", d[1]) : "", *mesh_rows, kMaxFieldComponents));
     const hsize_t bytes = count * H5Tget_size(type.get());
     if (!mesh_rows && bytes > kMaxExpansion * H5Dget_storage_size(ds.get()) + (1 << 20))
       fail(fmt::format("{} claims {} values but stores only {} bytes (damaged file?)", name, count,

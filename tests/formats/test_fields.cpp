@@ -384,6 +384,8 @@ TEST(UGS_FIELDS_SUITE, WriterRejectsMisuse) {
   const std::vector<Field> good = {test::sample_field("dp", 1, m.num_nodes(), 0, 0.0)};
   const std::vector<Field> short_field = {test::sample_field("dp", 1, m.num_nodes() - 1, 0, 0.0)};
   EXPECT_THROW(w.add_step("2000-01-01", 0, short_field), std::invalid_argument);
+  const std::vector<Field> wide = {test::sample_field("wide", kMaxFieldComponents + 1, m.num_nodes(), 0, 0.0)};
+  EXPECT_THROW(w.add_step("2000-01-01", 0, wide), std::invalid_argument);
   EXPECT_THROW(w.add_step("2000-13-01", 0, good), std::invalid_argument);
   w.add_step("2000-01-01", 0, good);
   EXPECT_THROW(w.add_step("2000-01-01", 1, good), std::invalid_argument);
@@ -419,6 +421,27 @@ TEST(UGS_FIELDS_SUITE, ReaderErrorsNameFileFieldAndStep) {
     EXPECT_EQ(e.rfind((dir / "cut.h5").string() + ": ", 0), 0u) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
+  fs::remove_all(dir);
+}
+
+// A field of more components than any writer writes is refused before its values are read (its
+// zero chunks need not be stored: the mesh's counts bound what a field may allocate).
+TEST(UGS_FIELDS_SUITE, ReaderRefusesTooManyComponents) {
+  const auto dir = test::temp_dir("fields-wide");
+  const Mesh m = test::faulted_cube_mesh();
+  write_series(dir / "r.h5", m);
+  const std::string h5 = (dir / "r.h5").string();
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  const hsize_t dims[2] = {m.num_nodes(), static_cast<hsize_t>(kMaxFieldComponents) + 1};
+  const hid_t space = H5Screate_simple(2, dims, nullptr);
+  const hid_t d = H5Dcreate2(f, "/steps/000000/node/wide", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  H5Dclose(d);
+  H5Sclose(space);
+  H5Fclose(f);
+  FieldSeriesReader r(h5);
+  EXPECT_EQ(test::input_error_of([&] { r.node_field(0, "wide"); }),
+            h5 + ": /steps/000000/node/wide: 11 values of 65 components (expected 11 of at most 64 components)");
   fs::remove_all(dir);
 }
 

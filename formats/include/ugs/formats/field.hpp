@@ -44,11 +44,15 @@ void for_each_output_cell(const Mesh& mesh, std::span<const ElementType> types, 
         for (std::size_t i = 0; i < b.size(); ++i) f(b, i);
 }
 
+// The most components a field may have (a full 3 x 3 tensor has 9): the readers refuse more before
+// allocating anything.
+inline constexpr int kMaxFieldComponents = 64;
+
 // A field handed to a writer must match the mesh; a mismatch is a bug in the calling tool.
 inline void check_field(const Field& f, std::size_t count, std::string_view what) {
   if (f.name.empty() || f.name.find_first_of("/<>&\"") != std::string::npos)
     throw std::invalid_argument(fmt::format("{} field '{}': name must be non-empty, without / < > & \"", what, f.name));
-  if (f.components < 1 || f.values.size() != count * static_cast<std::size_t>(f.components))
+  if (f.components < 1 || f.components > kMaxFieldComponents || f.values.size() != count * static_cast<std::size_t>(f.components))
     throw std::invalid_argument(fmt::format("{} field '{}': {} values for {} x {} components", what, f.name,
                                             f.values.size(), count, f.components));
 }
