@@ -499,6 +499,8 @@ struct FieldSeriesReader::Impl {
     num_cells = total;
     for (const char* name : {"/mesh/cell_tags", "/mesh/material"})
       if (dims(name) != std::vector<hsize_t>{num_cells}) fail(fmt::format("{} does not match the cells", name));
+    check_stored("/mesh/coordinates");
+    check_stored("/mesh/cell_tags");
 
     h5::Id steps_group(H5Gopen2(file.get(), "/steps", H5P_DEFAULT), H5Gclose);
     if (!steps_group.valid()) fail("no /steps group");
@@ -528,6 +530,24 @@ struct FieldSeriesReader::Impl {
     std::vector<hsize_t> d(rank);
     H5Sget_simple_extent_dims(space.get(), d.data(), nullptr);
     return d;
+  }
+
+  // A dataset claiming more values than its storage could expand to is damaged: refused before
+  // anything is allocated. The mesh's arrays are checked when the file is opened, so their counts
+  // bound the fields (whose chunks of zeros are not stored).
+  void check_stored(hid_t ds, const std::string& name, hsize_t count) const {
+    h5::Id type(H5Dget_type(ds), H5Tclose);
+    const hsize_t bytes = count * (type.valid() ? H5Tget_size(type.get()) : 1);
+    if (bytes > kMaxExpansion * H5Dget_storage_size(ds) + (1 << 20))
+      fail(fmt::format("{} claims {} values but stores only {} bytes (damaged file?)", name, count,
+                       H5Dget_storage_size(ds)));
+  }
+  void check_stored(const std::string& name) const {
+    h5::Id ds(H5Dopen2(file.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!ds.valid()) fail(fmt::format("no dataset {}", name));
+    hsize_t count = 1;
+    for (hsize_t k : dims(ds.get(), name)) count *= k;
+    check_stored(ds.get(), name, count);
   }
 
   // All values of a dataset, converted to `mem_type` by HDF5; `out_dims` receives its shape.
@@ -561,10 +581,7 @@ struct FieldSeriesReader::Impl {
     if (mesh_rows && (d.empty() || d[0] != *mesh_rows || (d.size() == 2 && d[1] > static_cast<hsize_t>(kMaxFieldComponents))))
       fail(fmt::format("{}: {} values{} (expected {} of at most {} components)", name, d.empty() ? 0 : d[0],
                        d.size() == 2 ? fmt::format(" of {} components", d[1]) : "", *mesh_rows, kMaxFieldComponents));
-    const hsize_t bytes = count * H5Tget_size(type.get());
-    if (!mesh_rows && bytes > kMaxExpansion * H5Dget_storage_size(ds.get()) + (1 << 20))
-      fail(fmt::format("{} claims {} values but stores only {} bytes (damaged file?)", name, count,
-                       H5Dget_storage_size(ds.get())));
+    if (!mesh_rows) check_stored(ds.get(), name, count);
     std::vector<T> v(count);
     if (count > 0 && H5Dread(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
       fail(fmt::format("cannot read {}", name));

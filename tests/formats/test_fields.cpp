@@ -445,6 +445,35 @@ TEST(UGS_FIELDS_SUITE, ReaderRefusesTooManyComponents) {
   fs::remove_all(dir);
 }
 
+// A mesh claiming more nodes than its storage could hold is refused when the file is opened: the
+// mesh's counts are what bound the fields, whose chunks of zeros are not stored.
+TEST(UGS_FIELDS_SUITE, ReaderRefusesAMeshLargerThanItsStorage) {
+  const auto dir = test::temp_dir("fields-huge");
+  const Mesh m = test::faulted_cube_mesh();
+  write_series(dir / "r.h5", m);
+  const std::string h5 = (dir / "r.h5").string();
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hsize_t nodes = hsize_t{1} << 30;
+  for (const auto& [name, cols] : {std::pair{"/mesh/coordinates", 3}, std::pair{"/mesh/node_tags", 0}}) {
+    ASSERT_GE(H5Ldelete(f, name, H5P_DEFAULT), 0);
+    const hsize_t dims[2] = {nodes, static_cast<hsize_t>(cols)}, chunk[2] = {1024, static_cast<hsize_t>(cols)};
+    const int rank = cols ? 2 : 1;
+    const hid_t space = H5Screate_simple(rank, dims, nullptr);
+    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, rank, chunk);
+    const hid_t d = H5Dcreate2(f, name, cols ? H5T_IEEE_F64LE : H5T_STD_U64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    ASSERT_GE(d, 0);
+    H5Dclose(d);
+    H5Pclose(dcpl);
+    H5Sclose(space);
+  }
+  H5Fclose(f);
+  EXPECT_EQ(test::input_error_of([&] { FieldSeriesReader r(h5); }),
+            h5 + ": /mesh/coordinates claims 3221225472 values but stores only 0 bytes (damaged file?)");
+  fs::remove_all(dir);
+}
+
 // A file written by the other HDF5 flavour's build reads back the same (UGS_OTHER_WRITER is the
 // sample writer linked against the other flavour).
 TEST(UGS_FIELDS_SUITE, ReadsTheOtherFlavoursFile) {
