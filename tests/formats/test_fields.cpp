@@ -55,6 +55,15 @@ Series write_series(const fs::path& h5, const Mesh& m, const FieldSeriesOptions&
   return s;
 }
 
+// The XDMF indexes of the series `a`.h5 and `b`.h5 in `dir` are the same but for the file's name.
+void expect_same_index(const fs::path& dir, const std::string& a, const std::string& b) {
+  std::string xa = test::slurp(dir / (a + ".xdmf"));
+  const std::string xb = test::slurp(dir / (b + ".xdmf"));
+  for (std::size_t at = xa.find(a + ".h5:"); at != std::string::npos; at = xa.find(a + ".h5:", at)) xa.replace(at, a.size(), b);
+  xa.replace(xa.find("Name=\"" + a + "\""), a.size() + 7, "Name=\"" + b + "\"");
+  EXPECT_EQ(xa, xb);
+}
+
 void expect_same(const Field& a, const Field& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.components, b.components) << a.name;
@@ -214,6 +223,26 @@ hsize_t storage_size(const fs::path& h5, const std::string& dataset) {
   return n;
 }
 
+// Adds a chunked dataset with no chunk written to a committed file (replacing one of that name), as
+// a damaged file could have it.
+void add_unwritten_dataset(const std::string& h5, const char* name, std::vector<hsize_t> dims, hid_t type) {
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  if (H5Lexists(f, name, H5P_DEFAULT) > 0) ASSERT_GE(H5Ldelete(f, name, H5P_DEFAULT), 0);
+  std::vector<hsize_t> chunk = dims;
+  chunk[0] = std::min<hsize_t>(dims[0], 1024);
+  const int rank = static_cast<int>(dims.size());
+  const hid_t space = H5Screate_simple(rank, dims.data(), nullptr);
+  const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, rank, chunk.data());
+  const hid_t d = H5Dcreate2(f, name, type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  EXPECT_GE(d, 0) << name;
+  H5Dclose(d);
+  H5Pclose(dcpl);
+  H5Sclose(space);
+  H5Fclose(f);
+}
+
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
@@ -280,10 +309,7 @@ TEST(UGS_FIELDS_SUITE, MeshCopiedFromAnOpenWriter) {
   EXPECT_EQ(b.cell_tags(), a.cell_tags());
   EXPECT_EQ(b.materials(), a.materials());
   expect_same(b.cell_field(0, "chi"), a.cell_field(0, "chi"));
-  std::string xa = test::slurp(dir / "r.xdmf"), xb = test::slurp(dir / "c.xdmf");
-  for (std::size_t at = xa.find("r.h5:"); at != std::string::npos; at = xa.find("r.h5:", at)) xa.replace(at, 1, "c");
-  xa.replace(xa.find("Name=\"r\""), 8, "Name=\"c\"");
-  EXPECT_EQ(xa, xb);
+  expect_same_index(dir, "r", "c");
   fs::remove_all(dir);
 }
 
@@ -354,11 +380,7 @@ TEST(UGS_FIELDS_SUITE, CellFieldsAddedOneAtATimeGiveTheSameBytes) {
     EXPECT_THROW(w.add_cell_field(test::sample_field("late", 1, w.cell_count(), 0, 0.1)), std::logic_error);
   }
   EXPECT_EQ(test::slurp(dir / "a.h5"), test::slurp(dir / "b.h5"));
-  std::string xa = test::slurp(dir / "a.xdmf"), xb = test::slurp(dir / "b.xdmf");
-  for (auto* x : {&xa, &xb}) x->erase(0, x->find("<Grid"));  // they differ only in the file name
-  for (std::size_t at = xa.find("a.h5:"); at != std::string::npos; at = xa.find("a.h5:", at)) xa.replace(at, 1, "b");
-  xa.replace(xa.find("Name=\"a\""), 8, "Name=\"b\"");
-  EXPECT_EQ(xa, xb);
+  expect_same_index(dir, "a", "b");
   fs::remove_all(dir);
 }
 
@@ -424,53 +446,25 @@ TEST(UGS_FIELDS_SUITE, ReaderErrorsNameFileFieldAndStep) {
   fs::remove_all(dir);
 }
 
-// A field of more components than any writer writes is refused before its values are read (its
-// zero chunks need not be stored: the mesh's counts bound what a field may allocate).
-TEST(UGS_FIELDS_SUITE, ReaderRefusesTooManyComponents) {
-  const auto dir = test::temp_dir("fields-wide");
+// What a field may allocate is bounded by the mesh's counts (its chunks of zeros need not be
+// stored), so a field of more components than any writer writes is refused before its values are
+// read, and a mesh claiming more nodes than its storage could hold when the file is opened.
+TEST(UGS_FIELDS_SUITE, ReaderRefusesWhatTheMeshDoesNotBound) {
+  const auto dir = test::temp_dir("fields-bounds");
   const Mesh m = test::faulted_cube_mesh();
-  write_series(dir / "r.h5", m);
-  const std::string h5 = (dir / "r.h5").string();
-  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  const hsize_t dims[2] = {m.num_nodes(), static_cast<hsize_t>(kMaxFieldComponents) + 1};
-  const hid_t space = H5Screate_simple(2, dims, nullptr);
-  const hid_t d = H5Dcreate2(f, "/steps/000000/node/wide", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  ASSERT_GE(d, 0);
-  H5Dclose(d);
-  H5Sclose(space);
-  H5Fclose(f);
-  FieldSeriesReader r(h5);
+  const std::string wide = (dir / "wide.h5").string(), huge = (dir / "huge.h5").string();
+  write_series(wide, m);
+  write_series(huge, m);
+  add_unwritten_dataset(wide, "/steps/000000/node/wide", {m.num_nodes(), static_cast<hsize_t>(kMaxFieldComponents) + 1},
+                        H5T_IEEE_F64LE);
+  FieldSeriesReader r(wide);
   EXPECT_EQ(test::input_error_of([&] { r.node_field(0, "wide"); }),
-            h5 + ": /steps/000000/node/wide: 11 values of 65 components (expected 11 of at most 64 components)");
-  fs::remove_all(dir);
-}
-
-// A mesh claiming more nodes than its storage could hold is refused when the file is opened: the
-// mesh's counts are what bound the fields, whose chunks of zeros are not stored.
-TEST(UGS_FIELDS_SUITE, ReaderRefusesAMeshLargerThanItsStorage) {
-  const auto dir = test::temp_dir("fields-huge");
-  const Mesh m = test::faulted_cube_mesh();
-  write_series(dir / "r.h5", m);
-  const std::string h5 = (dir / "r.h5").string();
-  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  ASSERT_GE(f, 0);
+            wide + ": /steps/000000/node/wide: 11 values of 65 components (expected 11 of at most 64 components)");
   const hsize_t nodes = hsize_t{1} << 30;
-  for (const auto& [name, cols] : {std::pair{"/mesh/coordinates", 3}, std::pair{"/mesh/node_tags", 0}}) {
-    ASSERT_GE(H5Ldelete(f, name, H5P_DEFAULT), 0);
-    const hsize_t dims[2] = {nodes, static_cast<hsize_t>(cols)}, chunk[2] = {1024, static_cast<hsize_t>(cols)};
-    const int rank = cols ? 2 : 1;
-    const hid_t space = H5Screate_simple(rank, dims, nullptr);
-    const hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    H5Pset_chunk(dcpl, rank, chunk);
-    const hid_t d = H5Dcreate2(f, name, cols ? H5T_IEEE_F64LE : H5T_STD_U64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-    ASSERT_GE(d, 0);
-    H5Dclose(d);
-    H5Pclose(dcpl);
-    H5Sclose(space);
-  }
-  H5Fclose(f);
-  EXPECT_EQ(test::input_error_of([&] { FieldSeriesReader r(h5); }),
-            h5 + ": /mesh/coordinates claims 3221225472 values but stores only 0 bytes (damaged file?)");
+  add_unwritten_dataset(huge, "/mesh/coordinates", {nodes, 3}, H5T_IEEE_F64LE);
+  add_unwritten_dataset(huge, "/mesh/node_tags", {nodes}, H5T_STD_U64LE);
+  EXPECT_EQ(test::input_error_of([&] { FieldSeriesReader x(huge); }),
+            huge + ": /mesh/coordinates claims 3221225472 values but stores only 0 bytes (damaged file?)");
   fs::remove_all(dir);
 }
 
