@@ -3,6 +3,8 @@
 // the file's order only, and nothing left behind without commit().
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "run_tool.hpp"
 #include "ugs/mechanics/state_file.hpp"
 
@@ -50,6 +52,37 @@ TEST(StateFile, WrittenOneFieldAtATimeGivesTheBytesOfOneStep) {
   double time = 0;
   const mech::SavedState back = mech::read_state((dir / "streamed.h5").string(), m, date, time);
   EXPECT_EQ(date, "2001-04-01");
+  EXPECT_EQ(back.u, s.u);
+  EXPECT_EQ(back.dp, s.dp);
+  EXPECT_EQ(back.eps, s.eps);
+  EXPECT_EQ(back.dsig, s.dsig);
+  EXPECT_EQ(back.hypo, s.hypo);
+  fs::remove_all(dir);
+}
+
+// ugs-solve's state beside its results: the mesh copied from the open results writer, the state
+// read back as written (zero cells included: their chunks are not stored) and restartable on the
+// mesh itself.
+TEST(StateFile, MeshCopiedFromTheResultsReadsBackTheSame) {
+  const auto dir = test::temp_dir("state-copy");
+  const Mesh m = test::unit_cube_mesh();
+  mech::SavedState s = sample_state(m);
+  std::fill(s.eps.begin(), s.eps.end(), 0.0);  // a linear model's
+  FieldSeriesWriter results((dir / "r.h5").string(), m);
+  {
+    mech::StateFileWriter w((dir / "s.h5").string(), results, "2001-04-01", 3.2e7, s.u);
+    w.add(mech::StateField::Dp, s.dp);
+    w.add(mech::StateField::Eps, s.eps);
+    w.add(mech::StateField::Dsig, s.dsig);
+    w.add(mech::StateField::Hypo, s.hypo);
+    w.commit();
+  }
+  results.commit();
+  std::string date;
+  double time = 0;
+  const mech::SavedState back = mech::read_state((dir / "s.h5").string(), m, date, time);
+  EXPECT_EQ(date, "2001-04-01");
+  EXPECT_EQ(time, 3.2e7);
   EXPECT_EQ(back.u, s.u);
   EXPECT_EQ(back.dp, s.dp);
   EXPECT_EQ(back.eps, s.eps);

@@ -16,7 +16,7 @@ inline constexpr StateField kStateFields[] = {StateField::Dp, StateField::Eps, S
 
 // A state file written one field at a time (each gathered only when written: rank 0 holds one cell
 // field, not all of SavedState). Give add() every field of kStateFields in that order, then commit();
-// the bytes are write_state()'s. Without commit() nothing is left behind.
+// given the mesh, the bytes are write_state()'s. Without commit() nothing is left behind.
 class StateFileWriter {
 public:
   StateFileWriter(const std::string& path, const Mesh& mesh, const std::string& date, double time,
