@@ -228,7 +228,9 @@ hsize_t storage_size(const fs::path& h5, const std::string& dataset) {
 void add_unwritten_dataset(const std::string& h5, const char* name, std::vector<hsize_t> dims, hid_t type) {
   const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   ASSERT_GE(f, 0);
-  if (H5Lexists(f, name, H5P_DEFAULT) > 0) ASSERT_GE(H5Ldelete(f, name, H5P_DEFAULT), 0);
+  if (H5Lexists(f, name, H5P_DEFAULT) > 0) {
+    ASSERT_GE(H5Ldelete(f, name, H5P_DEFAULT), 0);
+  }
   std::vector<hsize_t> chunk = dims;
   chunk[0] = std::min<hsize_t>(dims[0], 1024);
   const int rank = static_cast<int>(dims.size());
