@@ -32,6 +32,20 @@ mech::SavedState sample_state(const Mesh& m) {
   return s;
 }
 
+// The state file `h5` restarts on `m` with the date 2001-04-01 (3.2e7 s) and every value of `s`.
+void expect_state_reads_back(const fs::path& h5, const Mesh& m, const mech::SavedState& s) {
+  std::string date;
+  double time = 0;
+  const mech::SavedState back = mech::read_state(h5.string(), m, date, time);
+  EXPECT_EQ(date, "2001-04-01");
+  EXPECT_EQ(time, 3.2e7);
+  EXPECT_EQ(back.u, s.u);
+  EXPECT_EQ(back.dp, s.dp);
+  EXPECT_EQ(back.eps, s.eps);
+  EXPECT_EQ(back.dsig, s.dsig);
+  EXPECT_EQ(back.hypo, s.hypo);
+}
+
 }  // namespace
 
 TEST(StateFile, WrittenOneFieldAtATimeGivesTheBytesOfOneStep) {
@@ -48,15 +62,7 @@ TEST(StateFile, WrittenOneFieldAtATimeGivesTheBytesOfOneStep) {
   }
   mech::write_state((dir / "streamed.h5").string(), m, "2001-04-01", 3.2e7, s);
   EXPECT_EQ(test::slurp(dir / "one.h5"), test::slurp(dir / "streamed.h5"));
-  std::string date;
-  double time = 0;
-  const mech::SavedState back = mech::read_state((dir / "streamed.h5").string(), m, date, time);
-  EXPECT_EQ(date, "2001-04-01");
-  EXPECT_EQ(back.u, s.u);
-  EXPECT_EQ(back.dp, s.dp);
-  EXPECT_EQ(back.eps, s.eps);
-  EXPECT_EQ(back.dsig, s.dsig);
-  EXPECT_EQ(back.hypo, s.hypo);
+  expect_state_reads_back(dir / "streamed.h5", m, s);
   fs::remove_all(dir);
 }
 
@@ -78,16 +84,7 @@ TEST(StateFile, MeshCopiedFromTheResultsReadsBackTheSame) {
     w.commit();
   }
   results.commit();
-  std::string date;
-  double time = 0;
-  const mech::SavedState back = mech::read_state((dir / "s.h5").string(), m, date, time);
-  EXPECT_EQ(date, "2001-04-01");
-  EXPECT_EQ(time, 3.2e7);
-  EXPECT_EQ(back.u, s.u);
-  EXPECT_EQ(back.dp, s.dp);
-  EXPECT_EQ(back.eps, s.eps);
-  EXPECT_EQ(back.dsig, s.dsig);
-  EXPECT_EQ(back.hypo, s.hypo);
+  expect_state_reads_back(dir / "s.h5", m, s);
   fs::remove_all(dir);
 }
 
