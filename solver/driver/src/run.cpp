@@ -68,13 +68,12 @@ void release(std::vector<T>& v) {
 
 // Once the solver holds each rank's part and the output files hold the mesh, rank 0 keeps of the
 // global model only what the per-step outputs read: the nodes and tags of the mesh (the top
-// surface) and bnd:top. Its elements stay where a restart state is written (write_state takes the
-// whole mesh). On the 1.49M-dof box this is ~180 MB of rank 0's peak.
-void release_distributed(Root& R, bool keep_elements) {
+// surface) and bnd:top; the restart state copies its mesh from the results file. On the 1.49M-dof
+// box this is ~180 MB of rank 0's peak.
+void release_distributed(Root& R) {
   mech::Model& m = R.model;
   release(m.x), release(m.tets), release(m.tet_material), release(m.tet_tags);
   release(m.fixed), release(m.prescribed), release(m.traction_force);
-  if (keep_elements) return;
   for (ElementBlock& b : R.mesh.blocks) release(b.tags), release(b.nodes);
 }
 
@@ -261,7 +260,7 @@ private:
       Root& R = *root_;
       R.out = std::make_unique<OutputSet>(o_, R.mesh, R.model, R.cs, faulted() ? &R.fm : nullptr);
       cell_fields_ = R.out->cell_fields();
-      release_distributed(R, o_.state.has_value());
+      release_distributed(R);
       if (faulted()) {
         R.ref_cell = R.history->cell_dp(set_.ref_time);
         R.ref_node = R.history->node_dp(set_.ref_time);
@@ -317,15 +316,8 @@ private:
     if (contact_) fs = contact_->gather_snapshot();
     std::unique_ptr<mech::StateFileWriter> w;
     mech::collective(comm_, [&] {
-      if (rank_ != 0) return;
-      // The results hold the same mesh and cell types (OutputSet): their stored arrays are copied.
-      if (root_->out) {
-        w = std::make_unique<mech::StateFileWriter>(*o_.state, root_->out->results(), date, time, std::move(u));
-        return;
-      }
-      FieldSeriesOptions vol;
-      if (faulted()) vol.cell_types = {ElementType::Tetrahedron};
-      w = std::make_unique<mech::StateFileWriter>(*o_.state, root_->mesh, date, time, std::move(u), vol);
+      // The results (open_outputs) hold the same mesh and cell types: their stored arrays are copied.
+      if (rank_ == 0) w = std::make_unique<mech::StateFileWriter>(*o_.state, root_->out->results(), date, time, std::move(u));
     });
     for (const mech::StateField f : mech::kStateFields) {
       std::vector<double> v = solver_->gather_state_field(f);
