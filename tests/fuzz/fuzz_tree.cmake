@@ -14,13 +14,15 @@ add_link_options(-fsanitize=address,undefined)
 add_subdirectory(formats)
 
 # The readers of meshing/, solver/flow and analysis/insar with exactly the sources they reach
-# (strata -> natural neighbours, surface stack, fault traces; ps_data -> crs).
+# (strata -> natural neighbours, surface stack, fault traces; ps_data -> crs; case_params -> the
+# case file of ugs_formats).
 set(_m ${PROJECT_SOURCE_DIR}/meshing/src)
 add_library(ugs_fuzz_readers STATIC
   ${_m}/strata.cpp ${_m}/natural_neighbour.cpp ${_m}/surface_stack.cpp ${_m}/plan.cpp
   ${_m}/fault_traces.cpp ${_m}/fault_traces_ogr.cpp ${_m}/geodata.cpp ${_m}/plan_inputs.cpp
   ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
-  ${PROJECT_SOURCE_DIR}/analysis/insar/src/ps_data.cpp ${PROJECT_SOURCE_DIR}/analysis/insar/src/crs.cpp)
+  ${PROJECT_SOURCE_DIR}/analysis/insar/src/ps_data.cpp ${PROJECT_SOURCE_DIR}/analysis/insar/src/crs.cpp
+  ${PROJECT_SOURCE_DIR}/analysis/insar/src/case_params.cpp)
 get_target_property(_ugs_gdal_includes GDAL::GDAL INTERFACE_INCLUDE_DIRECTORIES)
 target_include_directories(ugs_fuzz_readers SYSTEM PUBLIC ${_ugs_gdal_includes} ${GMSH_INCLUDE_DIR})
 target_include_directories(ugs_fuzz_readers PUBLIC
@@ -28,12 +30,21 @@ target_include_directories(ugs_fuzz_readers PUBLIC
   ${PROJECT_SOURCE_DIR}/solver/flow/include ${PROJECT_SOURCE_DIR}/analysis/insar/include)
 target_link_libraries(ugs_fuzz_readers PUBLIC ugs_formats GDAL::GDAL PRIVATE CGAL::CGAL Eigen3::Eigen)
 
+# The ensemble file and its designs (analysis/ensemble: spec, design, morris; OpenTURNS from Debian,
+# found as analysis/ensemble/CMakeLists.txt does). Only fuzz_ensemble_spec links it.
+find_package(OpenTURNS REQUIRED CONFIG)
+set(_e ${PROJECT_SOURCE_DIR}/analysis/ensemble/src)
+add_library(ugs_fuzz_ensemble STATIC ${_e}/spec.cpp ${_e}/design.cpp ${_e}/morris.cpp)
+target_include_directories(ugs_fuzz_ensemble PUBLIC ${PROJECT_SOURCE_DIR}/analysis/ensemble/include)
+target_link_libraries(ugs_fuzz_ensemble PUBLIC ugs_fuzz_readers ugs_formats PRIVATE OT)
+
 set(_ugs_fuzz_targets "")
-foreach(name msh hdf5_fields csv ps case_file schedule strata ogr)
+foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params)
   add_executable(fuzz_${name} ${CMAKE_CURRENT_LIST_DIR}/targets/fuzz_${name}.cpp)
   target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_${name} PRIVATE ugs_fuzz_readers ugs_formats)
   list(APPEND _ugs_fuzz_targets fuzz_${name})
 endforeach()
 target_link_libraries(fuzz_hdf5_fields PRIVATE ugs_fields_serial)
+target_link_libraries(fuzz_ensemble_spec PRIVATE ugs_fuzz_ensemble)
 add_custom_target(ugs_fuzz_targets DEPENDS ${_ugs_fuzz_targets})
