@@ -89,6 +89,30 @@ TEST(EnsembleSpec, BadInputIsOneLineNamingTheKey) {
   EXPECT_NE(error_of("[design]\nmethod = \"lhs\"\nmembers = 8\n").find("no [[parameter]]"), std::string::npos);
 }
 
+// Found by fuzz_ensemble_spec (tests/fuzz/corpus/ensemble_spec/regress-*): a string or quoted key
+// that is not UTF-8 made toml11 3.7.1 read out of bounds (ASan heap-buffer-overflow in its error
+// path); the file is now refused before toml11 sees it, naming the line and column.
+TEST(EnsembleSpec, TextThatIsNotUtf8IsOneLine) {
+  const std::string corpus = std::string(UGS_SOURCE_DIR) + "/tests/fuzz/corpus/ensemble_spec/";
+  const auto message = [](const std::string& path) {
+    try {
+      (void)read_spec(path);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(corpus + "regress-quoted-key-not-utf8.toml"),
+            corpus + "regress-quoted-key-not-utf8.toml:1: byte 0x9d at column 2 is not UTF-8 (expected a UTF-8 text file)");
+  EXPECT_EQ(message(corpus + "regress-ml-literal-not-utf8.toml"),
+            corpus + "regress-ml-literal-not-utf8.toml:5: byte 0x9d at column 1 is not UTF-8 (expected a UTF-8 text file)");
+  // Overlong forms, surrogates and a cut sequence are not UTF-8 either; real UTF-8 reads.
+  EXPECT_NE(error_of("[design]\nmethod = \"lhs\"\nmembers = 8\n# \xc0\xaf\n").find(":4: byte 0xc0 at column 3"), std::string::npos);
+  EXPECT_NE(error_of("# \xed\xa0\x80\n").find(":1: byte 0xed at column 3"), std::string::npos);
+  EXPECT_NE(error_of("# \xe2\x82").find(":1: byte 0xe2 at column 3"), std::string::npos);
+  EXPECT_EQ(error_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 8\n# \xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x99\x82\n") + kTwo), "");
+}
+
 TEST(EnsembleDesign, SizesBoundsAndSameSeedSameMembers) {
   const EnsembleSpec lhs = spec_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 50\nseed = 11\n") + kTwo);
   const Design a = make_design(lhs), b = make_design(lhs);

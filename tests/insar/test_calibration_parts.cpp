@@ -55,6 +55,15 @@ TEST(CaseParameters, ValuesAndMissingParameters) {
   EXPECT_NE(test::input_error_of([&] { c.value("nothing.here"); }).find("no parameter 'nothing.here'"), std::string::npos);
 }
 
+// Found by fuzz_case_params (tests/fuzz/corpus/case_params/regress-literal-not-utf8.toml, the case
+// part before its "%%" line): a string that is not UTF-8 (here the overlong form e0 80 af) made toml11
+// 3.7.1 read out of bounds; the case is refused before toml11 sees it.
+TEST(CaseParameters, CaseThatIsNotUtf8IsOneLine) {
+  const std::string path = std::string(UGS_SOURCE_DIR) + "/tests/fuzz/corpus/case_params/regress-literal-not-utf8.toml";
+  EXPECT_EQ(test::input_error_of([&] { CaseTemplate c(path); }),
+            path + ":13: byte 0xe0 at column 13 is not UTF-8 (expected a UTF-8 text file)");
+}
+
 TEST(CaseParameters, RenderedCopyKeepsTextChangesValuesAndReadsBack) {
   const CaseTemplate c(kCase);
   const std::string out = c.render({{"material.pool_c.c_R", 3.75}, {"material.aquifer_pool_c.c_R", 3.75},
