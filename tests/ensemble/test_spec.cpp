@@ -113,6 +113,59 @@ TEST(EnsembleSpec, TextThatIsNotUtf8IsOneLine) {
   EXPECT_EQ(error_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 8\n# \xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x99\x82\n") + kTwo), "");
 }
 
+// Found by fuzz_ensemble_spec and by probing its neighbours after the first
+// (tests/fuzz/corpus/ensemble_spec/regress-*): laws that OpenTURNS refuses with its own exception
+// (ugs-ensemble's "internal error", exit 1) or whose members are not finite numbers.
+TEST(EnsembleSpec, LawsOpenTurnsCannotDrawAreOneLine) {
+  const std::string corpus = std::string(UGS_SOURCE_DIR) + "/tests/fuzz/corpus/ensemble_spec/";
+  const auto message = [&](const std::string& name) {
+    try {
+      const EnsembleSpec s = read_spec(corpus + name);
+      (void)make_design(s);
+    } catch (const InputError& e) {
+      return std::string(e.what()).substr(corpus.size());
+    }
+    return std::string();
+  };
+  // OpenTURNS: "Errors found when parsing expression 'inf+-nan*(x0-0.5)'".
+  EXPECT_EQ(message("regress-uniform-infinite-width.toml"),
+            "regress-uniform-infinite-width.toml:8: 'parameter[0].upper': uniform range [-1e+308, 1e+308]: upper - lower = inf "
+            "(expected a finite width above 2.22507e-308)");
+  // OpenTURNS: "Invalid numeric token: '9.8813129168249308835e-324'".
+  EXPECT_EQ(message("regress-uniform-subnormal-width.toml"),
+            "regress-uniform-subnormal-width.toml:8: 'parameter[0].upper': 4.94066e-324 is too close to 0 (expected 0 or a "
+            "magnitude above 2.22507e-308)");
+  // Members at -inf and inf (no exception).
+  EXPECT_EQ(message("regress-triangular-infinite-width.toml"),
+            "regress-triangular-infinite-width.toml:9: 'parameter[0].upper': triangular range [-1e+308, 1e+308]: upper - lower = "
+            "inf (expected a finite width above 2.22507e-308)");
+  // OpenTURNS: "MuLog=0 and SigmaLog=1000 lead to a LogNormal distribution with a too much wide range".
+  EXPECT_EQ(message("regress-lognormal-too-wide.toml"),
+            "regress-lognormal-too-wide.toml:8: 'parameter[0].sigma_log': lognormal(median 1, sigma_log 1000) spans more than "
+            "doubles hold within 9 sigma_log (expected |ln median| + 9 sigma_log < 700)");
+  // OpenTURNS: "the truncation interval does not contain a non-empty part of the support".
+  EXPECT_EQ(message("regress-truncation-zero-probability.toml").rfind(
+                "regress-truncation-zero-probability.toml:9: 'parameter[0].lower': the truncation [0.5, 0.5000000000000001] leaves "
+                "no probability of normal(0, 1) (",
+                0),
+            0u)
+      << message("regress-truncation-zero-probability.toml");
+  // The neighbours: a normal law reaching past the largest double, a truncation in a far tail that
+  // keeps its 1e-6, a lognormal law at the edge.
+  const std::string head = "[design]\nmethod = \"lhs\"\nmembers = 32\n[[parameter]]\npath = \"a\"\n";
+  EXPECT_NE(error_of(head + "distribution = \"normal\"\nmean = 0.0\nstd = 1e308\n").find(":8: 'parameter[0].std': normal(0, 1e+308) "
+                                                                                      "reaches beyond the largest double"),
+            std::string::npos);
+  EXPECT_EQ(error_of(head + "distribution = \"normal\"\nmean = 0.0\nstd = 1.0\nlower = 4.7\n"), "");   // 1.3e-6 left
+  EXPECT_NE(error_of(head + "distribution = \"normal\"\nmean = 0.0\nstd = 1.0\nlower = 4.8\n").find("(7.93e-07 of it"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "distribution = \"normal\"\nmean = 0.0\nstd = 1.0\nupper = -4.8\n").find("(7.93e-07 of it"),
+            std::string::npos);
+  EXPECT_EQ(error_of(head + "distribution = \"lognormal\"\nmedian = 1e-300\nsigma_log = 1.0\n"), "");
+  const EnsembleSpec s = spec_of(head + "distribution = \"lognormal\"\nmedian = 1e-300\nsigma_log = 1.0\nlower = 1e-301\n");
+  for (const auto& x : make_design(s).x) EXPECT_GE(x[0], 1e-301);
+}
+
 TEST(EnsembleDesign, SizesBoundsAndSameSeedSameMembers) {
   const EnsembleSpec lhs = spec_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 50\nseed = 11\n") + kTwo);
   const Design a = make_design(lhs), b = make_design(lhs);

@@ -82,51 +82,93 @@ void require_utf8(const std::string& text, const std::string& file) {
   }
 }
 
+// The probability of [lo, hi] under an untruncated normal or lognormal law (closed form: the
+// normal CDF through erfc, each tail from its own side so that far tails do not cancel to 0).
+double probability_between(const Distribution& d, double lo, double hi) {
+  auto z = [&](double x) {
+    if (d.kind == DistributionKind::lognormal) return x <= 0 ? -std::numeric_limits<double>::infinity() : (std::log(x) - std::log(d.a)) / d.b;
+    return (x - d.a) / d.b;
+  };
+  const double zl = z(lo), zh = z(hi);
+  const double r = 1 / std::sqrt(2.0);
+  if (zl >= 0) return 0.5 * (std::erfc(zl * r) - std::erfc(zh * r));   // upper tail
+  if (zh <= 0) return 0.5 * (std::erfc(-zh * r) - std::erfc(-zl * r));  // lower tail
+  return 1 - 0.5 * (std::erfc(-zl * r) + std::erfc(zh * r));
+}
+
 Distribution read_distribution(const TomlTable& t) {
   Distribution d;
   const std::string kind = t.string("distribution");
-  auto positive = [&](const std::string& key) {
+  // Every number of a law is 0 or a normal double: OpenTURNS writes a law's numbers into its own
+  // formulas and cannot read back a subnormal one (uniform(0, 5e-324): "Invalid numeric token").
+  auto number = [&](const std::string& key) {
     const double v = t.number(key);
+    if (v != 0 && !std::isnormal(v))
+      throw t.error(key, fmt::format("{:g} is too close to 0 (expected 0 or a magnitude above {:g})", v,
+                                     std::numeric_limits<double>::min()));
+    return v;
+  };
+  auto positive = [&](const std::string& key) {
+    const double v = number(key);
     if (!(v > 0)) throw t.error(key, fmt::format("must be > 0 (got {:g})", v));
     return v;
   };
+  // The width of a bounded law must be a finite number: uniform(-1e308, 1e308) has none, and its
+  // members would be inf or NaN.
+  auto finite_width = [&](const char* law) {
+    if (!std::isnormal(d.b - d.a))
+      throw t.error("upper", fmt::format("{} range [{:g}, {:g}]: upper - lower = {:g} (expected a finite width above {:g})",
+                                         law, d.a, d.b, d.b - d.a, std::numeric_limits<double>::min()));
+  };
   if (kind == "uniform") {
     d.kind = DistributionKind::uniform;
-    d.a = t.number("lower");
-    d.b = t.number("upper");
+    d.a = number("lower");
+    d.b = number("upper");
     if (!(d.a < d.b)) throw t.error("upper", fmt::format("uniform bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
+    finite_width("uniform");
     t.reject_unknown({"path", "paths", "distribution", "lower", "upper"});
     return d;
   }
   if (kind == "triangular") {
     d.kind = DistributionKind::triangular;
-    d.a = t.number("lower");
-    d.c = t.number("mode");
-    d.b = t.number("upper");
+    d.a = number("lower");
+    d.c = number("mode");
+    d.b = number("upper");
     if (!(d.a < d.b)) throw t.error("upper", fmt::format("triangular bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
     if (d.c < d.a || d.c > d.b) throw t.error("mode", fmt::format("mode {:g} outside [lower, upper] = [{:g}, {:g}]", d.c, d.a, d.b));
+    finite_width("triangular");
     t.reject_unknown({"path", "paths", "distribution", "lower", "mode", "upper"});
     return d;
   }
+  // Unbounded laws: their values within 9 standard deviations (probability 1 - 2e-19, beyond any
+  // quantile taken) must be finite doubles; OpenTURNS refuses a lognormal law whose range leaves
+  // them ("too much wide range").
   if (kind == "normal") {
     d.kind = DistributionKind::normal;
-    d.a = t.number("mean");
+    d.a = number("mean");
     d.b = positive("std");
+    if (!(std::abs(d.a) + 9 * d.b <= std::numeric_limits<double>::max()))
+      throw t.error("std", fmt::format("normal({:g}, {:g}) reaches beyond the largest double within 9 std (expected |mean| + 9 std "
+                                       "<= {:g})", d.a, d.b, std::numeric_limits<double>::max()));
     t.reject_unknown({"path", "paths", "distribution", "mean", "std", "lower", "upper"});
   } else if (kind == "lognormal") {
     d.kind = DistributionKind::lognormal;
     d.a = positive("median");
     d.b = positive("sigma_log");
+    if (!(std::abs(std::log(d.a)) + 9 * d.b < 700))
+      throw t.error("sigma_log", fmt::format("lognormal(median {:g}, sigma_log {:g}) spans more than doubles hold within 9 sigma_log "
+                                             "(expected |ln median| + 9 sigma_log < 700)", d.a, d.b));
     t.reject_unknown({"path", "paths", "distribution", "median", "sigma_log", "lower", "upper"});
   } else {
     throw t.error("distribution", fmt::format("unknown distribution '{}' (expected uniform, normal, lognormal or triangular; "
                                               "normal and lognormal take lower/upper to truncate)", kind));
   }
-  d.lower = t.number_opt("lower");
-  d.upper = t.number_opt("upper");
+  if (t.has("lower")) d.lower = number("lower");
+  if (t.has("upper")) d.upper = number("upper");
   if (d.lower && d.upper && !(*d.lower < *d.upper))
     throw t.error("upper", fmt::format("truncation bounds reversed or equal: lower {:g} >= upper {:g}", *d.lower, *d.upper));
-  // The truncation must leave some probability: at least 1e-6 of the untruncated law.
+  // The truncation must leave some probability: at least 1e-6 of the untruncated law (OpenTURNS
+  // refuses an interval whose probability rounds to 0, and the law of a thinner slice is noise).
   if (d.lower || d.upper) {
     Distribution base = d;
     base.lower.reset();
@@ -135,10 +177,11 @@ Distribution read_distribution(const TomlTable& t) {
     const double hi = d.upper ? *d.upper : std::numeric_limits<double>::infinity();
     if (base.kind == DistributionKind::lognormal && hi <= 0)
       throw t.error("upper", fmt::format("a lognormal law has no probability below {:g}", hi));
-    const double q0 = quantile(base, 1e-7), q1 = quantile(base, 1 - 1e-7);
-    if (hi < q0 || lo > q1)
+    const double p = probability_between(base, lo, hi);
+    if (!(p >= 1e-6))
       throw t.error(d.lower ? "lower" : "upper",
-                    fmt::format("the truncation [{:g}, {:g}] leaves no probability of {}", lo, hi, base.describe()));
+                    fmt::format("the truncation [{}, {}] leaves no probability of {} ({:.3g} of it; expected at least 1e-06)",
+                                lo, hi, base.describe(), p));
   }
   return d;
 }

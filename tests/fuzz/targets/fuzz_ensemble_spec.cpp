@@ -95,11 +95,15 @@ void check_design(const ugs::ensemble::EnsembleSpec& s, const ugs::ensemble::Des
     if (law.kind == DistributionKind::lognormal) lo = 0;
     if (law.lower) lo = std::max(lo, *law.lower);
     if (law.upper) hi = std::min(hi, *law.upper);
+    // OpenTURNS maps [0, 1] to [lower, upper] with rounding: a value may leave by an ulp or so.
+    const double slack = 1e-12 * std::max(std::isfinite(lo) ? std::abs(lo) : 0.0, std::isfinite(hi) ? std::abs(hi) : 0.0);
     for (std::size_t i = 0; i < d.x.size(); ++i) {
       const double v = d.x[i].at(j);
-      if (!std::isfinite(v) || v < lo || v > hi)
-        finding("member " + std::to_string(i + 1) + ", " + s.parameters[j].name + " of " + law.describe() + ": " +
-                std::to_string(v));
+      if (!std::isfinite(v) || v < lo - slack || v > hi + slack) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.17g", v);
+        finding("member " + std::to_string(i + 1) + ", " + s.parameters[j].name + " of " + law.describe() + ": " + text);
+      }
     }
   }
 }
