@@ -114,18 +114,21 @@ Distribution read_distribution(const TomlTable& t) {
     return v;
   };
   // The width of a bounded law must be a finite number: uniform(-1e308, 1e308) has none, and its
-  // members would be inf or NaN.
-  auto finite_width = [&](const char* law) {
-    if (!std::isnormal(d.b - d.a))
-      throw t.error("upper", fmt::format("{} range [{:g}, {:g}]: upper - lower = {:g} (expected a finite width above {:g})",
-                                         law, d.a, d.b, d.b - d.a, std::numeric_limits<double>::min()));
+  // members would be inf or NaN. The triangular quantile takes the square root of a product of two
+  // widths (upper - lower)(upper - mode), so its width must be at most 1e150 (triangular(0, 0, 1e308)
+  // drew -inf).
+  auto finite_width = [&](const char* law, double most) {
+    const double w = d.b - d.a;
+    if (!std::isnormal(w) || w > most)
+      throw t.error("upper", fmt::format("{} range [{:g}, {:g}]: upper - lower = {:g} (expected a width from {:g} to {:g})", law,
+                                         d.a, d.b, w, std::numeric_limits<double>::min(), most));
   };
   if (kind == "uniform") {
     d.kind = DistributionKind::uniform;
     d.a = number("lower");
     d.b = number("upper");
     if (!(d.a < d.b)) throw t.error("upper", fmt::format("uniform bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
-    finite_width("uniform");
+    finite_width("uniform", std::numeric_limits<double>::max());
     t.reject_unknown({"path", "paths", "distribution", "lower", "upper"});
     return d;
   }
@@ -136,7 +139,7 @@ Distribution read_distribution(const TomlTable& t) {
     d.b = number("upper");
     if (!(d.a < d.b)) throw t.error("upper", fmt::format("triangular bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
     if (d.c < d.a || d.c > d.b) throw t.error("mode", fmt::format("mode {:g} outside [lower, upper] = [{:g}, {:g}]", d.c, d.a, d.b));
-    finite_width("triangular");
+    finite_width("triangular", 1e150);
     t.reject_unknown({"path", "paths", "distribution", "lower", "mode", "upper"});
     return d;
   }
