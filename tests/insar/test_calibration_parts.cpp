@@ -64,6 +64,36 @@ TEST(CaseParameters, CaseThatIsNotUtf8IsOneLine) {
             path + ":13: byte 0xe0 at column 13 is not UTF-8 (expected a UTF-8 text file)");
 }
 
+// Found by fuzz_case_params (tests/fuzz/corpus/case_params/regress-alias-double-edit.toml): two
+// spellings of one value in a parameter (material.pool_x.c_R,material.1.c_R=2.25:5.5) made two edits
+// of the same text, "3.0" -> "2.25" -> "2.255": the copies had c_R = 2.255, a valid case, so the
+// tools ran with values they were not asked for. The render makes one edit for equal values and
+// refuses different ones; check_parameters refuses any value named twice, in one parameter or two.
+TEST(CaseParameters, TwoSpellingsOfOneValue) {
+  const CaseTemplate c(kCase);
+  for (const char* alias : {"material.\"pool_c\".c_R", "material.6.c_R"}) {
+    const std::string out = c.render({{"material.pool_c.c_R", 2.25}, {alias, 2.25}});
+    EXPECT_NE(out.find("\nc_R = 2.25                 # loading"), std::string::npos) << alias;
+    EXPECT_EQ(out.find("2.255"), std::string::npos) << alias;
+  }
+  EXPECT_EQ(test::input_error_of([&] { c.render({{"material.pool_c.c_R", 2.25}, {"material.6.c_R", 3.5}}); }),
+            kCase + ":116: 'material.pool_c.c_R' and 'material.6.c_R' name the same value, set to 2.25 and 3.5 (expected each value "
+                    "named once)");
+  EXPECT_EQ(test::input_error_of([] { check_parameters(CaseTemplate(kCase), {parse_parameter("material.pool_c.c_R,material.6.c_R=2.25:5.5")}); }),
+            "parameter to calibrate material.pool_c.c_R,material.6.c_R: 'material.pool_c.c_R' and 'material.6.c_R' name the same value "
+            "of the case (" + kCase + ":116; expected each value named once)");
+  EXPECT_EQ(test::input_error_of([] {
+              check_parameters(CaseTemplate(kCase), {parse_parameter("material.pool_c.c_R=2:6"), parse_parameter("material.\"pool_c\".c_R=3:5")});
+            }),
+            "parameter to calibrate material.\"pool_c\".c_R: 'material.pool_c.c_R' and 'material.\"pool_c\".c_R' name the same value "
+            "of the case (" + kCase + ":116; expected each value named once)");
+  // Pool C and its aquifer are two values: accepted.
+  EXPECT_EQ(test::input_error_of([] {
+              check_parameters(CaseTemplate(kCase), {parse_parameter("material.pool_c.c_R,material.aquifer_pool_c.c_R=2.25:5.5")});
+            }),
+            "(no InputError)");
+}
+
 TEST(CaseParameters, RenderedCopyKeepsTextChangesValuesAndReadsBack) {
   const CaseTemplate c(kCase);
   const std::string out = c.render({{"material.pool_c.c_R", 3.75}, {"material.aquifer_pool_c.c_R", 3.75},

@@ -204,11 +204,21 @@ std::string toml_string(const std::string& s) {
 std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::vector<ParameterSpec>& params,
                                           const std::string& source) {
   auto where = [&](const ParameterSpec& p) { return source.empty() ? "parameter to calibrate " + p.name : source; };
+  // Each path names a number of the case, and no number is named twice: neither by the same text
+  // nor by two spellings of it (material.pool_c.c_R, material."pool_c".c_R, material.4.c_R), which
+  // would set it from two parameters, or twice in one copy.
   std::set<std::string> seen;
+  std::map<std::pair<std::size_t, std::size_t>, std::string> at;  // (line, column) of the value -> its first path
+  std::istringstream in(tmpl.text());
+  const toml::value root = toml::parse(in, tmpl.path());
   for (const auto& p : params)
     for (const auto& path : p.paths) {
-      (void)tmpl.value(path);
+      const auto loc = lookup(root, path, tmpl.path()).location();
       if (!seen.insert(path).second) throw InputError(where(p), fmt::format("'{}' is named twice", path));
+      const auto [it, fresh] = at.emplace(std::make_pair(loc.line(), loc.column()), path);
+      if (!fresh)
+        throw InputError(where(p), fmt::format("'{}' and '{}' name the same value of the case ({}:{}; expected each value named once)",
+                                               it->second, path, tmpl.path(), loc.line()));
     }
   std::vector<std::string> warnings;
   // Each copy is checked in the system's temporary folder (no output or cache folder exists yet).
@@ -328,6 +338,7 @@ std::string CaseTemplate::render(const std::vector<std::pair<std::string, double
   const toml::value root = toml::parse(in, path_);
   // Edits per line: (column, length, replacement); the value's text must be where toml11 says.
   std::map<std::size_t, std::vector<std::tuple<std::size_t, std::size_t, std::string>>> edits;
+  std::map<std::pair<std::size_t, std::size_t>, std::pair<std::string, double>> set_by;  // (line, column) -> (path, value)
   std::vector<std::string> lines;
   {
     std::size_t start = 0;
@@ -357,6 +368,16 @@ std::string CaseTemplate::render(const std::vector<std::pair<std::string, double
     tt.erase(std::remove(tt.begin(), tt.end(), '_'), tt.end());
     if (!t || !to_double(tt, old) || old != cur)
       throw InputError(path_, fmt::format("cannot locate the text of parameter '{}' (line {})", p, loc.line()));
+    // Two spellings of one value (material.pool_c.c_R, material."pool_c".c_R): one edit, or the
+    // second would replace the first's text again ("3.0" -> "2.25" -> "2.255").
+    const auto [it, fresh] = set_by.emplace(std::make_pair(loc.line(), loc.column()), std::make_pair(p, v));
+    if (!fresh) {
+      if (it->second.second != v)
+        throw InputError(fmt::format("{}:{}", path_, loc.line()),
+                         fmt::format("'{}' and '{}' name the same value, set to {} and {} (expected each value named once)",
+                                     it->second.first, p, toml_float(it->second.second), toml_float(v)));
+      continue;
+    }
     edits[loc.line()].emplace_back(loc.column() - 1, loc.region(), toml_float(v));
   }
   // File names relative to the case's folder: absolute in the copy.
