@@ -170,6 +170,22 @@ TEST(EnsembleSpec, LawsOpenTurnsCannotDrawAreOneLine) {
   for (const auto& x : make_design(s).x) EXPECT_GE(x[0], 1e-301);
 }
 
+// OpenTURNS' Sobol' sequence has 1111 dimensions, and the blocks A and B take 2 per parameter: with
+// more than 555 parameters it threw its own exception ("Dimension must be in range [0-1111]"; found
+// while looking at the fuzzing's neighbours, out of the fuzzer's reach: 30 kB of parameters).
+TEST(EnsembleSpec, SobolDesignOfMoreParametersThanTheSequenceHasIsOneLine) {
+  auto spec = [](std::size_t d) {
+    std::string s = "[design]\nmethod = \"sobol\"\nmembers = " + std::to_string(2 * (d + 2)) + "\n";
+    for (std::size_t i = 0; i < d; ++i)
+      s += "[[parameter]]\npath = \"p" + std::to_string(i) + "\"\ndistribution = \"uniform\"\nlower = 0.0\nupper = 1.0\n";
+    return s;
+  };
+  EXPECT_NE(error_of(spec(556)).find(":2: 'design.method': the sobol design takes at most 555 parameters (OpenTURNS' Sobol' "
+                                     "sequence has 1111 dimensions, 2 per parameter), here 556"),
+            std::string::npos);
+  EXPECT_EQ(make_design(spec_of(spec(555))).x.size(), 2u * 557u);
+}
+
 TEST(EnsembleDesign, SizesBoundsAndSameSeedSameMembers) {
   const EnsembleSpec lhs = spec_of(std::string("[design]\nmethod = \"lhs\"\nmembers = 50\nseed = 11\n") + kTwo);
   const Design a = make_design(lhs), b = make_design(lhs);

@@ -1,5 +1,6 @@
 #include "ugs/ensemble/design.hpp"
 
+#include <fmt/format.h>
 #include <openturns/OT.hxx>
 
 #include "ugs/ensemble/morris.hpp"
@@ -56,6 +57,9 @@ Design make_design(const EnsembleSpec& spec) {
       break;
     }
     case DesignMethod::sobol: {
+      if (2 * d > OT::SobolSequence::MaximumDimension)  // read_spec refused it already (A and B: 2 d dimensions)
+        throw InputError(spec.path, fmt::format("the sobol design takes at most {} parameters (OpenTURNS' Sobol' sequence), here {}",
+                                                OT::SobolSequence::MaximumDimension / 2, d));
       design.base = spec.members / (d + 2);
       // A Sobol' sequence (not randomised: no seed needed) through the joint distribution's
       // quantiles; SobolIndicesExperiment lays out the A, B and pick-freeze blocks.
