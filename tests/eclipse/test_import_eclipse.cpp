@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include <opm/io/eclipse/EclFile.hpp>
 #include <opm/io/eclipse/EclOutput.hpp>
 #include <opm/io/eclipse/ERst.hpp>
 
@@ -258,6 +259,39 @@ fs::path* ImportEclipse::dir_ = nullptr;
 
 std::size_t count_lines(const std::string& s) { return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')); }
 
+// Damaging a binary file by hand: the first array header named `name` (8 characters, blank-padded)
+// starts 4 bytes before the name; its data's first record marker 24 bytes after that.
+std::size_t header_at(const std::string& bytes, const std::string& name) {
+  const auto p = bytes.find(name);
+  EXPECT_NE(p, std::string::npos) << name;
+  return p == std::string::npos ? 0 : p - 4;
+}
+void put_be32(std::string& bytes, std::size_t at, std::int32_t v) {
+  const auto u = static_cast<std::uint32_t>(v);
+  for (int b = 0; b < 4; ++b) bytes[at + b] = static_cast<char>((u >> (24 - 8 * b)) & 0xff);
+}
+
+// The same arrays as a formatted file (CASE.FEGRID, CASE.FUNRST), written by EclIO.
+void to_formatted(const std::string& from, const std::string& to) {
+  Opm::EclIO::EclFile in(from);
+  in.loadData();
+  Opm::EclIO::EclOutput out(to, true);
+  const auto list = in.getList();
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const auto& [name, type, count] = list[n];
+    const int i = static_cast<int>(n);
+    switch (type) {
+      case Opm::EclIO::INTE: out.write(name, in.get<int>(i)); break;
+      case Opm::EclIO::REAL: out.write(name, in.get<float>(i)); break;
+      case Opm::EclIO::DOUB: out.write(name, in.get<double>(i)); break;
+      case Opm::EclIO::LOGI: out.write(name, in.get<bool>(i)); break;
+      case Opm::EclIO::CHAR: out.write(name, in.get<std::string>(i)); break;
+      case Opm::EclIO::MESS: out.message(name); break;
+      default: FAIL() << from << ": array " << name << " of a type this test does not convert";
+    }
+  }
+}
+
 }  // namespace
 
 TEST_F(ImportEclipse, MetricUnifiedRestartMatchesPressureOfEveryCell) {
@@ -377,6 +411,91 @@ TEST_F(ImportEclipse, BadInputExitsTwoWithOneLineAndNoOutput) {
   expect_bad(path("TINY.EGRID") + " --restart " + path("UNITS.UNRST"),
              "UNITS.UNRST: report step 0: INTEHEAD item 3: unit system 7 in INTEHEAD item 3 (expected 1 METRIC, 2 FIELD, 3 LAB or 4 PVT-M)");
   expect_bad(path("TINY.EGRID") + " --offset 1,2", "--offset");
+}
+
+TEST_F(ImportEclipse, FormattedFilesGiveTheSamePressureChange) {
+  to_formatted(path("TINY.EGRID"), path("TINY.FEGRID"));
+  to_formatted(path("TINY.UNRST"), path("TINY.FUNRST"));
+  const auto r = import(path("TINY.FEGRID") + " --restart " + path("TINY.FUNRST") + " --mesh " + path("mesh.msh") + " -o " +
+                        path("formatted.h5"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  check_against_restart(path("formatted.h5"), {path("TINY.FUNRST")}, 1e5);
+  EXPECT_NE(r.err.find("8 x 6 x 4 cells, 191 active, 30 NNCs, METRES, MAPAXES"), std::string::npos) << r.err;
+}
+
+// Damaged files that EclIO itself would crash on, fill the memory with, or throw from where the
+// tool did not expect it: each is refused by the record walk or the check of EGrid's arrays
+// (formats/eclipse/src/records.hpp, eclipse.cpp) with one line, exit 2, no output.
+TEST_F(ImportEclipse, DamagedFilesAreRefusedBeforeEclioReadsThem) {
+  const auto out = path("damaged.h5");
+  const auto expect_refused = [&](const std::string& egrid, const std::string& restart, const std::string& fragment) {
+    const auto r = import(path(egrid) + " --restart " + path(restart) + " --mesh " + path("mesh.msh") + " -o " + out);
+    EXPECT_EQ(r.exit_code, 2) << egrid << " " << restart << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("ugs-import-eclipse: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << "expected '" << fragment << "' in: " << r.err;
+    for (const char c : r.err) EXPECT_TRUE(c == '\n' || std::isprint(static_cast<unsigned char>(c))) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  const std::string egrid = test::slurp(path("TINY.EGRID")), unrst = test::slurp(path("TINY.UNRST"));
+  {
+    // NNCHEAD naming local grid 3 of none: EGrid's constructor indexed its list of LGR names (SIGSEGV).
+    std::string b = egrid;
+    put_be32(b, header_at(b, "NNCHEAD ") + 24 + 4 + 4, 3);
+    test::spit(path("LGR.EGRID"), b);
+    expect_refused("LGR.EGRID", "TINY.UNRST", "LGR.EGRID: NNCHEAD (array number 10) names local grid 3, but 0 are defined before it");
+  }
+  {
+    // ACTNUM's header renamed COORD: EGrid took the second COORD (192 items) for the pillars.
+    std::string b = egrid;
+    b.replace(header_at(b, "ACTNUM  ") + 4, 8, "COORD   ");
+    test::spit(path("COORD2.EGRID"), b);
+    expect_refused("COORD2.EGRID", "TINY.UNRST", "COORD2.EGRID: a second COORD array in the global grid (array number 8)");
+  }
+  {
+    // An unknown type of non-printable bytes: the line says '?' for them.
+    std::string b = egrid;
+    b.replace(header_at(b, "ZCORN   ") + 16, 4, "\xa0\xa1XY");
+    test::spit(path("TYPE.EGRID"), b);
+    expect_refused("TYPE.EGRID", "TINY.UNRST", "TYPE.EGRID: cannot be read as ECLIPSE binary output: byte");
+    expect_refused("TYPE.EGRID", "TINY.UNRST", "array ZCORN: unknown type '??XY'");
+  }
+  {
+    // The second step's PRESSURE record marker off by 400 bytes, mid-file: EclIO's exception came
+    // from a load outside the tool's guard ("internal error", exit 1).
+    std::string b = unrst;
+    const auto first = b.find("PRESSURE");
+    const auto second = b.find("PRESSURE", first + 8) - 4;
+    put_be32(b, second + 24, 191 * 4 - 400);
+    test::spit(path("MARK.UNRST"), b);
+    expect_refused("TINY.EGRID", "MARK.UNRST",
+                   fmt::format("MARK.UNRST: cannot be read as ECLIPSE binary output: byte {}: array PRESSURE (191 items): record of 364 "
+                               "bytes ends with the marker",
+                               second + 24));
+  }
+  {
+    // A formatted header's count of 2^31 - 1: EclIO allocated 23 GB for the text (killed by the OOM killer).
+    to_formatted(path("TINY.EGRID"), path("BIG.FEGRID"));
+    to_formatted(path("TINY.UNRST"), path("BIG.FUNRST"));
+    std::string t = test::slurp(path("BIG.FUNRST"));
+    const auto h = t.find("'PRESSURE'");
+    ASSERT_NE(h, std::string::npos);
+    const auto eol = t.find('\n', h);
+    t.replace(h, eol - h, "'PRESSURE'  2147483647 'REAL'");
+    test::spit(path("BIG.FUNRST"), t);
+    expect_refused("BIG.FEGRID", "BIG.FUNRST", "BIG.FUNRST: cannot be read as ECLIPSE formatted output: byte");
+    expect_refused("BIG.FEGRID", "BIG.FUNRST", "array PRESSURE: 2147483647 items, more than the file's");
+    t.replace(h, t.find('\n', h) - h, "'PRESSURE'       20000 'REAL'");
+    test::spit(path("BIG.FUNRST"), t);
+    expect_refused("BIG.FEGRID", "BIG.FUNRST", "array PRESSURE: 20000 items take 345000 bytes, but");
+    // Strings of 99 characters: EclIO's formatted reader divides by 80 / (99 + 3) = 0 (SIGFPE).
+    std::string g = test::slurp(path("BIG.FEGRID"));
+    const auto c = g.find("'CHAR'");
+    ASSERT_NE(c, std::string::npos);
+    g.replace(c, 6, "'C099'");
+    test::spit(path("C99.FEGRID"), g);
+    expect_refused("C99.FEGRID", "TINY.UNRST", "strings of 99 characters (type C099; expected 1 to 77)");
+  }
 }
 
 TEST_F(ImportEclipse, CaseKeepsThePoolMaterialsOnly) {

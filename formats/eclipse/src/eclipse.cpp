@@ -14,6 +14,7 @@
 
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
+#include "records.hpp"
 
 namespace ugs::eclipse {
 namespace fs = std::filesystem;
@@ -51,7 +52,9 @@ auto eclio(const std::string& path, F&& f) -> decltype(f()) {
       const auto close = what.find("] ");
       if (close != std::string::npos) what.erase(0, close + 2);
     }
-    std::replace(what.begin(), what.end(), '\n', ' ');
+    // One line, and printable: the message may quote bytes of a damaged file.
+    for (char& c : what)
+      if (!std::isprint(static_cast<unsigned char>(c))) c = c == '\n' ? ' ' : '?';
     throw InputError(path, fmt::format("cannot be read as ECLIPSE binary output: {}", what));
   }
 }
@@ -66,6 +69,58 @@ void check_complete(Opm::EclIO::EclFile& f) {
       f.loadData(static_cast<int>(i));
       return;
     }
+}
+
+// EGrid's constructor indexes the small arrays that say which grid an array belongs to (LGR,
+// NNCHEAD, GRIDHEAD, MAPUNITS) without checking their sizes, and takes the last of two COORD (ZCORN,
+// ACTNUM, ...) arrays of one grid: walk the arrays as it does and refuse what it would misread.
+// Returns the global grid's dimensions (GRIDHEAD items 2-4), checked.
+std::array<int, 3> check_egrid_arrays(Opm::EclIO::EclFile& f, const std::string& path) {
+  using Opm::EclIO::eclArrType;
+  const auto list = f.getList();
+  std::string grid = "global";
+  std::vector<std::string> lgrs;
+  std::map<std::string, int> seen;
+  std::array<int, 3> dims{0, 0, 0};
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const auto& [name, type, count] = list[n];
+    const auto need = [&](bool type_ok, std::int64_t min_items, const char* expected) {
+      if (!type_ok || count < min_items)
+        throw InputError(path, fmt::format("array {} (number {}) has {} items of another type or fewer than expected ({})", name,
+                                           n + 1, count, expected));
+      f.loadData(static_cast<int>(n));
+    };
+    const bool text = type == eclArrType::CHAR || type == eclArrType::C0NN;
+    if (name == "ENDLGR") grid = "global";
+    if (name == "LGR") {
+      need(text, 1, "the name of a local grid");
+      lgrs.push_back(f.get<std::string>(static_cast<int>(n))[0]);
+      grid = lgrs.back();
+    } else if (name == "NNCHEAD") {
+      need(type == eclArrType::INTE, 2, "at least 2 integers");
+      const int g = f.get<int>(static_cast<int>(n))[1];
+      if (g < 0 || g > static_cast<int>(lgrs.size()))
+        throw InputError(path, fmt::format("NNCHEAD (array number {}) names local grid {}, but {} are defined before it", n + 1, g,
+                                           lgrs.size()));
+      grid = g == 0 ? "global" : lgrs[static_cast<std::size_t>(g - 1)];
+    } else if (name == "MAPUNITS") {
+      need(text, 1, "a unit name");
+    } else if (name == "GRIDHEAD") {
+      need(type == eclArrType::INTE, 4, "at least 4 integers");
+    }
+    static const char* const per_grid[] = {"GRIDHEAD", "COORD", "ZCORN", "ACTNUM", "NNC1", "NNC2", "HOSTNUM"};
+    if (grid != "global" || std::find(std::begin(per_grid), std::end(per_grid), name) == std::end(per_grid)) continue;
+    if (++seen[name] > 1) throw InputError(path, fmt::format("a second {} array in the global grid (array number {})", name, n + 1));
+    if (name == "GRIDHEAD") {
+      const auto& h = f.get<int>(static_cast<int>(n));
+      dims = {h[1], h[2], h[3]};
+      if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0 || static_cast<double>(dims[0]) * dims[1] * dims[2] > 2.0e9)
+        throw InputError(path, fmt::format("grid dimensions {} x {} x {} (expected positive, at most 2e9 cells)", dims[0], dims[1],
+                                           dims[2]));
+    }
+  }
+  if (!seen.count("GRIDHEAD")) throw InputError(path, "no GRIDHEAD array for the global grid (expected an EGRID file)");
+  return dims;
 }
 
 }  // namespace
@@ -83,13 +138,16 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
   Grid grid;
   grid.path = path;
   eclio(path, [&] {
+    check_records(path);
+    std::array<int, 3> n;
+    {
+      Opm::EclIO::EclFile arrays(path);
+      check_complete(arrays);
+      n = check_egrid_arrays(arrays, path);
+    }
     Opm::EclIO::EGrid eg(path);
-    check_complete(eg);
     if (eg.is_radial()) throw InputError(path, "radial grid (only Cartesian corner-point grids are imported)");
-    const auto n = eg.dimension();
-    if (n[0] <= 0 || n[1] <= 0 || n[2] <= 0 ||
-        static_cast<double>(n[0]) * n[1] * n[2] > 2.0e9)
-      throw InputError(path, fmt::format("grid dimensions {} x {} x {} (expected positive, at most 2e9 cells)", n[0], n[1], n[2]));
+    if (eg.dimension() != n) throw InputError(path, "the global grid's dimensions differ between GRIDHEAD and EclIO");
     grid.dims = n;
     const std::size_t total = static_cast<std::size_t>(n[0]) * n[1] * n[2];
     // EclIO indexes COORD, ZCORN and ACTNUM without checking their sizes: check them here.
@@ -248,6 +306,7 @@ Restart::Restart(const std::string& path) : impl_(std::make_unique<Impl>()) {
   }
   for (const auto& [number, file] : files) {
     auto ecl = eclio(file, [&] {
+      check_records(file);
       auto f = std::make_unique<Opm::EclIO::EclFile>(file);
       check_complete(*f);
       return f;
@@ -265,8 +324,10 @@ Restart::Restart(const std::string& path) : impl_(std::make_unique<Impl>()) {
       int report = number, ih = -1, pr = -1;
       for (std::size_t i = starts[s]; i < end && names[i] != "LGR"; ++i) {
         if (names[i] == "SEQNUM") {
-          ecl->loadData(static_cast<int>(i));
-          const auto& v = eclio(file, [&]() -> const std::vector<int>& { return ecl->get<int>(static_cast<int>(i)); });
+          const auto& v = eclio(file, [&]() -> const std::vector<int>& {
+            ecl->loadData(static_cast<int>(i));
+            return ecl->get<int>(static_cast<int>(i));
+          });
           if (v.empty()) throw InputError(file, "empty SEQNUM record");
           report = v[0];
         } else if (names[i] == "INTEHEAD" && ih < 0) {
