@@ -7,6 +7,7 @@ about a second, so that a few hundred mutated runs fit in the test's time budget
 
 import json
 import os
+import shutil
 
 X0, Y0 = 680000.0, 4950000.0
 CRS = {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}}
@@ -188,3 +189,53 @@ def write_inputs(d):
             e, n, _ = to_laea.TransformPoint(X0 + 2000 + 1500 * i, Y0 + 4000 + 500 * i)
             vals = ",".join(f"{-0.5 * k * (1 + 0.1 * i):.2f}" for k in range(len(dates)))
             fh.write(f"P{i},{e:.2f},{n:.2f},50.0,{vals}\n")
+
+
+# ---- a reservoir simulator's output (ugs-import-eclipse) ------------------------------------------
+DECK = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "eclipse", "make_deck.py")
+
+
+def write_eclipse(d, flow):
+    """TINY.EGRID and TINY.UNRST of OPM Flow on the import test's tiny deck (tests/eclipse/make_deck.py:
+    8 x 6 x 4 corner-point cells about (600000, 5000000), 1000-1080 m deep, MAPAXES, a faulted pillar,
+    an inactive cell; 5 report steps), and deck_mesh.msh: a box of tetrahedra over it."""
+    import subprocess
+    import sys
+    run = os.path.join(d, "deck-run")
+    os.makedirs(run, exist_ok=True)
+    for cmd in ([sys.executable, DECK, "TINY.DATA"], [flow, "TINY.DATA", "--output-dir=."]):
+        r = subprocess.run(cmd, cwd=run, capture_output=True, text=True, timeout=600)
+        if r.returncode != 0:
+            raise SystemExit(f"FAIL: {' '.join(cmd)} (exit {r.returncode}): {r.stdout[-2000:]}{r.stderr[-2000:]}")
+    for f in ("TINY.EGRID", "TINY.UNRST"):
+        shutil.move(os.path.join(run, f), os.path.join(d, f))
+    shutil.rmtree(run)
+    write_box_msh(os.path.join(d, "deck_mesh.msh"), (599400.0, 4999900.0, -1120.0), (601000.0, 5001100.0, -980.0),
+                  (12, 10, 4))
+
+
+def write_box_msh(path, lo, hi, n):
+    """An ASCII MSH 4.1 box of n[0] x n[1] x n[2] cubes, 6 tetrahedra each, one volume "rock"."""
+    nodes, coords, tets = {}, [], []
+
+    def node(i, j, k):
+        if (i, j, k) not in nodes:
+            nodes[(i, j, k)] = len(coords) + 1
+            coords.append(tuple(lo[a] + (hi[a] - lo[a]) * (i, j, k)[a] / n[a] for a in range(3)))
+        return nodes[(i, j, k)]
+
+    for i in range(n[0]):
+        for j in range(n[1]):
+            for k in range(n[2]):
+                c = [node(i + a, j + b, k + e) for e in (0, 1) for b in (0, 1) for a in (0, 1)]
+                for t in ((0, 1, 3, 7), (0, 3, 2, 7), (0, 2, 6, 7), (0, 6, 4, 7), (0, 4, 5, 7), (0, 5, 1, 7)):
+                    tets.append([c[q] for q in t])
+    with open(path, "w") as f:
+        f.write('$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 "rock"\n$EndPhysicalNames\n')
+        f.write("$Entities\n0 0 0 1\n1 %r %r %r %r %r %r 1 1 0\n$EndEntities\n" % (*lo, *hi))
+        f.write("$Nodes\n1 %d 1 %d\n3 1 0 %d\n" % (len(coords), len(coords), len(coords)))
+        f.write("".join("%d\n" % (q + 1) for q in range(len(coords))))
+        f.write("".join("%r %r %r\n" % c for c in coords))
+        f.write("$EndNodes\n$Elements\n1 %d 1 %d\n3 1 4 %d\n" % (len(tets), len(tets), len(tets)))
+        f.write("".join("%d %d %d %d %d\n" % (e + 1, *t) for e, t in enumerate(tets)))
+        f.write("$EndElements\n")

@@ -25,6 +25,7 @@ import random
 import re
 import shlex
 import shutil
+import struct
 import subprocess
 import sys
 import time
@@ -34,6 +35,7 @@ sys.path.insert(0, HERE)
 import fixtures  # noqa: E402
 
 TEXT_EXT = (".csv", ".toml", ".geojson", ".json", ".txt")
+ECLIPSE_EXT = (".EGRID", ".UNRST")
 OUTPUT_TEXT_EXT = (".csv", ".toml", ".md", ".txt", ".xdmf")
 NONFINITE = re.compile(r"(?<![A-Za-z0-9_])[-+]?(nan|inf|infinity)(?![A-Za-z0-9_])", re.IGNORECASE)
 NUMBER = re.compile(rb"(?<![A-Za-z0-9_.])[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?(?![A-Za-z0-9_])")
@@ -84,6 +86,8 @@ def tool_specs():
                       "--case {IN}/case.toml --mesh {IN}/model.msh --param material.pool_x.c_R=2:6 "
                       "--measured {IN}/measured.csv --scan 2 --max-evals 2 -q -o {OUT}/calibration "
                       "--solver-command " + shlex.quote(solve_cmd)),
+        "import-eclipse": (0.7, ["TINY.EGRID", "TINY.UNRST", "deck_mesh.msh"],
+                           "{IN}/TINY.EGRID --restart {IN}/TINY.UNRST --mesh {IN}/deck_mesh.msh -q -o {OUT}/dp.h5"),
         "report": (0.35, ["solve.h5", "solve_top.h5", "model.msh", "case.toml", "traces.geojson"],
                    "--results {IN}/solve.h5 --mesh {IN}/model.msh --case {IN}/case.toml --trace {IN}/traces.geojson "
                    "--width 400 --height 300 -q -o {OUT}/report"),
@@ -119,6 +123,10 @@ def make_chain(build, base):
         r = subprocess.run(cmd, cwd=base, capture_output=True, text=True, timeout=600)
         if r.returncode != 0:
             raise SystemExit(f"FAIL: the valid chain breaks at {' '.join(cmd)} (exit {r.returncode}): {r.stderr.strip()}")
+    flow = os.environ.get("OPM_FLOW") or shutil.which("flow")
+    if not flow:
+        raise SystemExit("FAIL: no OPM Flow (Debian libopm-simulators-bin; OPM_FLOW=path/to/flow) for ugs-import-eclipse's inputs")
+    fixtures.write_eclipse(base, flow)
 
 
 # ---- mutations ---------------------------------------------------------------------------------
@@ -130,10 +138,17 @@ def mutate(rng, path):
     ops = ["flip", "truncate", "empty", "directory", "word"]
     if text:
         ops += ["number"] * 5 + ["delete_line"] * 2 + ["duplicate_line"]
+    elif path.endswith(ECLIPSE_EXT):
+        ops += ["flip"] * 2 + ["word"] * 2 + ["eclipse"] * 8
     else:
         ops += ["flip"] * 3 + ["word"] * 3
     op = rng.choice(ops)
     name = os.path.basename(path)
+    if op == "eclipse":
+        data, what = mutate_eclipse(rng, data)
+        with open(path, "wb") as fh:
+            fh.write(data)
+        return f"{name}: {what}"
     if op == "directory":
         os.remove(path)
         os.mkdir(path)
@@ -182,6 +197,50 @@ def mutate(rng, path):
     with open(path, "wb") as fh:
         fh.write(data)
     return f"{name}: {what}"
+
+
+def eclipse_headers(data):
+    """Byte offsets of the array headers of an ECLIPSE binary file (Fortran records: a big-endian
+    int32 length, the bytes, the length again; a header is a 16-byte record: name, count, type)."""
+    heads, i = [], 0
+    while i + 8 <= len(data):
+        n = struct.unpack(">i", data[i:i + 4])[0]
+        if n < 0 or i + 8 + n > len(data):
+            break
+        if n == 16:
+            heads.append(i)
+        i += 8 + n
+    return heads
+
+
+def mutate_eclipse(rng, data):
+    """One change of an ECLIPSE binary file's structure: a header's item count, type or name (that of
+    another array), or a data record's length marker."""
+    b = bytearray(data)
+    heads = eclipse_headers(data)
+    h = rng.choice(heads)
+    name = data[h + 4:h + 12].decode(errors="replace").strip()
+    op = rng.choice(["count", "count", "type", "name", "marker", "marker"])
+    if op == "count":
+        old = struct.unpack(">i", data[h + 12:h + 16])[0]
+        v = rng.choice([0, -1, 1, 2, 7, 66, 2**31 - 1, 2**30, -2**31, old - 1, old + 1, old + 1000])
+        b[h + 12:h + 16] = struct.pack(">i", v)
+        return bytes(b), f"array {name} at byte {h}: item count {old} -> {v}"
+    if op == "type":
+        t = rng.choice([b"INTE", b"REAL", b"DOUB", b"CHAR", b"LOGI", b"MESS", b"C000", b"C099", b"C0x1", b"X231", b"\xa0XYZ"])
+        b[h + 16:h + 20] = t
+        return bytes(b), f"array {name} at byte {h}: type -> {t!r}"
+    if op == "name":
+        other = rng.choice(heads)
+        b[h + 4:h + 12] = data[other + 4:other + 12]
+        return bytes(b), f"array {name} at byte {h}: renamed {data[other + 4:other + 12].decode(errors='replace').strip()}"
+    m = h + 24
+    if m + 4 > len(b):
+        return bytes(b), "unchanged (no data record after the last header)"
+    old = struct.unpack(">i", data[m:m + 4])[0]
+    v = rng.choice([0, -4, 4, -2**31, 2**31 - 1, old - 4, old + 4, old * 2])
+    b[m:m + 4] = struct.pack(">i", v)
+    return bytes(b), f"array {name}: the data record marker at byte {m}: {old} -> {v}"
 
 
 def prepare_run(base, specs, tool, seed, run_dir):
