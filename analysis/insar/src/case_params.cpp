@@ -25,9 +25,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// toml11 3.7.1 (Debian's libtoml11-dev) reads out of bounds when a string or a quoted key is not
-// valid UTF-8: its error path rewinds a location with an iterator of another buffer (parser.hpp,
-// parse_*_string: inner_loc.reset(first); found by fuzz_ensemble_spec with the 3 bytes '\x9d').
+// toml11 3.7.1 (Debian's libtoml11-dev) reads out of bounds when a literal string or quoted key
+// ('...', '''...''') is not valid UTF-8: its error path rewinds a location with an iterator of
+// another buffer (parser.hpp, parse_literal_string and parse_ml_literal_string:
+// inner_loc.reset(first); found by fuzz_ensemble_spec with the 3 bytes '\x9d').
 // TOML is UTF-8 (TOML 1.0), so the text is checked before toml11 sees it: the first byte that does
 // not start or continue a UTF-8 sequence (overlong forms, surrogates and code points above
 // U+10FFFF included) is refused with its line and column.
