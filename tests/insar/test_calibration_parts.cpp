@@ -191,6 +191,25 @@ TEST(SolverCommand, ErrorsNameTheSettingInWordsNotAFlag) {
     EXPECT_EQ(message(cmd, false).find("--"), std::string::npos) << cmd;
 }
 
+// A case with several problems at a bound: each problem names the case, none the temporary copy it
+// was checked in (the mutation test found the copy's name in all but the first).
+TEST(CaseParameters, EveryProblemOfAnInvalidCopyNamesTheCase) {
+  const auto dir = test::temp_dir("case-check-names");
+  std::string text = test::slurp(kCase);
+  const auto at = text.find("[initial_stress]\n");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 17, "bogus_one = 1.0\nbogus_two = 2.0\n");
+  test::spit(dir / "case.toml", text);
+  const std::string invalid = test::input_error_of(
+      [&] { check_parameters(CaseTemplate((dir / "case.toml").string()), {parse_parameter("material.pool_c.c_R=2:6")}); });
+  EXPECT_NE(invalid.find("case.toml:"), std::string::npos) << invalid;
+  EXPECT_NE(invalid.find("bogus_one"), std::string::npos) << invalid;
+  EXPECT_NE(invalid.find("bogus_two"), std::string::npos) << invalid;
+  EXPECT_EQ(invalid.find("ugs-case-check"), std::string::npos) << invalid;
+  EXPECT_GE(std::count(invalid.begin(), invalid.end(), '\n'), 1) << invalid;
+  std::filesystem::remove_all(dir);
+}
+
 // The same for the parameters, the misfit, the CRSs, the polygons and the points (issue 23: library
 // code names no tool's flags). CalibrateCli.LibraryMessagesShowTheFlags and SampleCli.BadInputs
 // check the tools' lines.

@@ -106,6 +106,13 @@ TEST(PsData, BadInputsNameFileAndLine) {
   EXPECT_NE(error_of(write("g.csv", "pid,easting,northing,20150101\nA,4400000,2400000,x1\n"), o).find("g.csv:2"),
             std::string::npos);
   EXPECT_NE(error_of(write("h.csv", "pid,x,y\nA,1,2\nA,3,4\n"), o).find("also used"), std::string::npos);
+  // A displacement of a kilometre or more (-1e308 mm squared to inf in the misfit, written with exit 0).
+  EXPECT_NE(error_of(write("l.csv", "pid,easting,northing,20150101,20150201\nA,4400000,2400000,0,-1e308\n"), o)
+                .find("l.csv:2: column '20150201': displacement -1e+308 mm (expected at most 1e+06 mm"),
+            std::string::npos);
+  EXPECT_NE(error_of(write("m.csv", "pid,easting,northing,20150101\nA,4400000,2400000,1000000.5\n"), o).find("m.csv:2"),
+            std::string::npos);
+  EXPECT_EQ(read_ps(write("n.csv", "pid,easting,northing,20150101\nA,4400000,2400000,-1000000\n"), o).values_mm[0], -1e6);
   EXPECT_NE(error_of(write("i.csv", "pid,x,y\n"), o).find("no points"), std::string::npos);
   // A series required but absent.
   PsReadOptions series = o;

@@ -145,6 +145,33 @@ units = ["cover", "reservoir", "base"]
 """
 
 
+ENSEMBLE = """# mutation-test ensemble (tests/mutation/fixtures.py)
+[design]
+method = "sobol"
+members = 12
+seed = 3
+
+[[parameter]]
+path = "material.pool_x.c_R"
+distribution = "uniform"
+lower = 2.0
+upper = 6.0
+
+[[parameter]]
+paths = ["material.pool_x.K_m_per_s[0]", "material.pool_x.K_m_per_s[1]"]
+distribution = "lognormal"
+median = 2e-7
+sigma_log = 0.5
+
+[[parameter]]
+path = "fault.f1.friction_deg"
+distribution = "normal"
+mean = 30.0
+std = 3.0
+lower = 20.0
+"""
+
+
 def write_inputs(d):
     """The hand-written inputs of the chain, in folder d."""
     geojson(os.path.join(d, "domain.geojson"), "domain",
@@ -167,6 +194,8 @@ def write_inputs(d):
         fh.write(CASE)
     with open(os.path.join(d, "strata.toml"), "w") as fh:
         fh.write(STRATA)
+    with open(os.path.join(d, "ensemble.toml"), "w") as fh:
+        fh.write(ENSEMBLE)
     with open(os.path.join(d, "pressure_pool_x.csv"), "w") as fh:
         fh.write("date,p_norm,p_MPa\n")
         p = [15.0, 14.6, 14.2, 13.8, 13.5, 13.3, 13.2, 13.4, 13.8, 14.2, 14.5, 14.7, 14.8]

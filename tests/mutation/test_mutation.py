@@ -86,6 +86,10 @@ def tool_specs():
                       "--case {IN}/case.toml --mesh {IN}/model.msh --param material.pool_x.c_R=2:6 "
                       "--measured {IN}/measured.csv --scan 2 --max-evals 2 -q -o {OUT}/calibration "
                       "--solver-command " + shlex.quote(solve_cmd)),
+        "ensemble:emit": (0.7, ["ensemble.toml", "case.toml", "model.msh", "measured.csv", "traces.geojson"],
+                          "run --spec {IN}/ensemble.toml --case {IN}/case.toml --mesh {IN}/model.msh --measured {IN}/measured.csv "
+                          "--inside {IN}/traces.geojson --phase p=1950-03-01/1950-09-01 --emit make --cache-dir {OUT}/members.cache "
+                          "-q -o {OUT}/members.mk --solver-command " + shlex.quote(solve_cmd)),
         "import-eclipse": (0.7, ["TINY.EGRID", "TINY.UNRST", "deck_mesh.msh"],
                            "{IN}/TINY.EGRID --restart {IN}/TINY.UNRST --mesh {IN}/deck_mesh.msh -q -o {OUT}/dp.h5"),
         "report": (0.35, ["solve.h5", "solve_top.h5", "model.msh", "case.toml", "traces.geojson"],

@@ -248,8 +248,10 @@ std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::v
       try {
         (void)read_case_file(check);
       } catch (const InputError& e) {
+        // Every problem names the copy (one per line of an ErrorList): name the case instead.
         std::string msg = e.what();
-        if (msg.rfind(check, 0) == 0) msg = tmpl.path() + msg.substr(check.size());
+        for (auto at = msg.find(check); at != std::string::npos; at = msg.find(check, at + tmpl.path().size()))
+          msg.replace(at, check.size(), tmpl.path());
         throw InputError(where(p), fmt::format("the case is not valid at {} = {}: {}", p.name, bound, msg));
       }
     }

@@ -61,6 +61,8 @@ Misfit combine_misfits(std::vector<SeriesMisfit> up, std::vector<SeriesMisfit> e
   if (m.n == 0 || w <= 0)
     throw InputError("", "no measured value of the PS selection falls in the misfit window within the results' dates");
   m.rms_mm = std::sqrt(ss / w);
+  if (!std::isfinite(m.rms_mm))
+    throw ComputeError(fmt::format("the InSAR misfit is not finite (sum of squares {} mm^2 over weight {})", ss, w));
   m.series = std::move(up);
   if (east_weight > 0) m.series.insert(m.series.end(), east.begin(), east.end());
   return m;

@@ -172,7 +172,12 @@ PsData read_csv_points(const std::string& path, const PsReadOptions& o) {
     std::size_t have = 0;
     for (std::size_t k = 0; k < nd; ++k) {
       if (is_missing(t.text(r, date_cols[k]))) continue;
-      d.values_mm[r * nd + k] = t.number(r, date_cols[k]);
+      const double v = t.number(r, date_cols[k]);
+      // Finite is not enough: a misfit of 1e308 mm squares to inf.
+      if (std::abs(v) > kMaxDisplacementMm)
+        throw InputError(p.where, fmt::format("column '{}': displacement {} mm (expected at most {:g} mm: a kilometre is not a measured "
+                                              "displacement)", t.columns()[date_cols[k]], v, kMaxDisplacementMm));
+      d.values_mm[r * nd + k] = v;
       ++have;
     }
     if (nd > 0 && have == 0) throw InputError(p.where, fmt::format("point '{}' has no data (every date is empty)", p.id));

@@ -155,13 +155,15 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
     body();
     return 0;
   } catch (const InputError& e) {
-    // One error line per problem (ErrorList): each with the tool's name.
-    const std::string all = e.what();
+    // Bad input is one line, also when one pass found several problems (ErrorList: one per
+    // line of what()): they follow each other on it, separated by "; ".
+    std::string all = e.what(), line;
     for (std::size_t p = 0; p <= all.size();) {
       const auto q = std::min(all.find('\n', p), all.size());
-      std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), with_flags(all.substr(p, q - p)).c_str());
+      line += (line.empty() ? "" : "; ") + with_flags(all.substr(p, q - p));
       p = q + 1;
     }
+    std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), line.c_str());
     return 2;
   } catch (const ComputeError& e) {
     std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), with_flags(e.what()).c_str());

@@ -23,7 +23,7 @@ private:
 // Every problem found in one pass over an input (as GMT's parse() counts n_errors): checked in
 // full, then thrown as one InputError holding one "where: what" line per problem, in the order of
 // the lines they name ("file:LINE"; problems without a line keep their order, after those with
-// one); the tool prints each line as its own error line.
+// one); the tool prints them on its one error line, separated by "; " (docs/cli.md).
 class ErrorList {
 public:
   void add(const std::string& where, const std::string& message) {

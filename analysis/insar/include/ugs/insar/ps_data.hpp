@@ -24,6 +24,10 @@ struct PsPoint {
   std::string where;              // "file:line" (CSV) or "file: feature N" (OGR)
 };
 
+// The largest measured displacement read (mm): a kilometre is no InSAR measurement, and a value
+// near the largest double squares to inf in a misfit.
+inline constexpr double kMaxDisplacementMm = 1.0e6;
+
 struct PsData {
   std::string path;
   std::string layout;             // "EGMS", "CSV" or "OGR"
@@ -47,8 +51,9 @@ struct PsReadOptions {
 };
 
 // Reads `path` ("-" = stdin, CSV). InputError naming file and line for: no coordinate columns,
-// a date column that does not parse, dates out of order, a non-numeric value, a point without any
-// value (when the file has series), duplicate ids, no points at all, or a non-point OGR geometry.
+// a date column that does not parse, dates out of order, a non-numeric value or one beyond
+// kMaxDisplacementMm, a point without any value (when the file has series), duplicate ids, no
+// points at all, or a non-point OGR geometry.
 PsData read_ps(const std::string& path, const PsReadOptions& options);
 
 // Only the points whose ids are listed (order of `ids`); InputError naming the first unknown id.
