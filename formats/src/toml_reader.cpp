@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -41,13 +42,44 @@ void reject_non_finite(const toml::value& v, const std::string& key, const std::
 }
 }  // namespace
 
+void require_utf8(const std::string& text, const std::string& file) {
+  const auto* s = reinterpret_cast<const unsigned char*>(text.data());
+  const std::size_t n = text.size();
+  std::size_t line = 1, line_start = 0;
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = s[i];
+    std::size_t len = 0;
+    unsigned char lo = 0x80, hi = 0xbf;  // the allowed range of the second byte
+    if (c < 0x80) len = 1;
+    else if (c >= 0xc2 && c <= 0xdf) len = 2;
+    else if (c == 0xe0) len = 3, lo = 0xa0;
+    else if (c >= 0xe1 && c <= 0xec) len = 3;
+    else if (c == 0xed) len = 3, hi = 0x9f;
+    else if (c >= 0xee && c <= 0xef) len = 3;
+    else if (c == 0xf0) len = 4, lo = 0x90;
+    else if (c >= 0xf1 && c <= 0xf3) len = 4;
+    else if (c == 0xf4) len = 4, hi = 0x8f;
+    bool ok = len > 0 && i + len <= n;
+    for (std::size_t k = 1; ok && k < len; ++k)
+      ok = k == 1 ? s[i + k] >= lo && s[i + k] <= hi : s[i + k] >= 0x80 && s[i + k] <= 0xbf;
+    if (!ok)
+      throw InputError(fmt::format("{}:{}", file, line),
+                       fmt::format("byte 0x{:02x} at column {} is not UTF-8 (expected a UTF-8 text file)", c, i - line_start + 1));
+    if (c == '\n') line += 1, line_start = i + 1;
+    i += len;
+  }
+}
+
 TomlTable TomlTable::parse_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory (expected a TOML file)");
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, fmt::format("cannot open: {}", std::strerror(errno)));
+  std::stringstream text;
+  text << f.rdbuf();
+  require_utf8(text.str(), path);
   try {
-    toml::value doc = toml::parse(f, path);
+    toml::value doc = toml::parse(text, path);
     reject_non_finite(doc, "", path);
     return TomlTable(std::move(doc), path, "");
   } catch (const toml::syntax_error& e) {

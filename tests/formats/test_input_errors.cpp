@@ -83,3 +83,23 @@ TEST_F(InputErrors, NotHdf5AndTruncatedHdf5AreOneLine) {
   });
   EXPECT_EQ(e.rfind(p("cut.h5") + ": ", 0), 0u) << e;
 }
+
+// TOML text that is not UTF-8 is one line naming line and column before toml11 parses it (toml11
+// 3.7.1 read out of bounds on a literal string or quoted key holding such bytes): the case file
+// and the stratigraphy go through TomlTable::parse_file like every TOML input.
+TEST_F(InputErrors, TomlThatIsNotUtf8IsOneLine) {
+  for (const std::string text : {"a = '\x9d'\n", "[model]\nname = '''x\n\xc0\xaf'''\n", "['\xed\xa0\x80']\nk = 1\n",
+                                 "# \xf4\x90\x80\x80\n"}) {
+    test::spit(p("bad.toml"), text);
+    const std::string msg = one_line_error([&] { TomlTable::parse_file(p("bad.toml")); });
+    EXPECT_NE(msg.find("is not UTF-8 (expected a UTF-8 text file)"), std::string::npos) << msg;
+    EXPECT_EQ(msg.rfind(p("bad.toml") + ":", 0), 0u) << msg;
+    EXPECT_EQ(one_line_error([&] { read_case_file(p("bad.toml")); }), msg);
+  }
+  test::spit(p("bad.toml"), "[model]\nname = '''x\n\xc0\xaf'''\n");
+  EXPECT_EQ(one_line_error([&] { TomlTable::parse_file(p("bad.toml")); }),
+            p("bad.toml") + ":3: byte 0xc0 at column 1 is not UTF-8 (expected a UTF-8 text file)");
+  // UTF-8 of every length is read.
+  test::spit(p("good.toml"), "name = 'Po \xc3\xa0 \xe2\x82\xac \xf0\x9f\x8c\x8d'\n");
+  EXPECT_EQ(TomlTable::parse_file(p("good.toml")).string("name"), "Po \xc3\xa0 \xe2\x82\xac \xf0\x9f\x8c\x8d");
+}

@@ -724,9 +724,15 @@ TEST(SolveTool, WarningsOnlyOnceTheInputsAreChecked) {
   // ... or whose third step's dp is listed but is no dataset (mutation_tools, replay solve:707007).
   fs::copy_file(d / "flow.h5", d / "flow_dpgroup.h5");
   replace_by_group(d / "flow_dpgroup.h5", "/steps/000002/node/dp");
+  // ... or whose third step's values are damaged (a NaN: the values are checked when a step is
+  // read; every step is read before the run starts since mutation_tools' seed 1307020, an inflate()
+  // that failed at the second step).
+  fs::copy_file(d / "flow.h5", d / "flow_nan.h5");
+  poke<double>(d / "flow_nan.h5", "/steps/{step}/node/dp", 3, NAN, H5T_NATIVE_DOUBLE, 2);
   // Bad input: the error line only.
   for (const std::string& extra : {" --pressure " + d / "other/flow_pool_c.h5", " --pressure " + d / "flow.h5" + " --restart " + d / "nothing.h5",
-                                   " --pressure " + d / "flow_nodp.h5", " --pressure " + d / "flow_dpgroup.h5"}) {
+                                   " --pressure " + d / "flow_nodp.h5", " --pressure " + d / "flow_dpgroup.h5",
+                                   " --pressure " + d / "flow_nan.h5"}) {
     const auto r = test::run(test::solve_cmd() + " " + d / "mesh.msh" + " --case " + d / "fault.toml" + extra + " -o " + d / "out.h5");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err.rfind("ugs-solve: error: ", 0), 0u) << r.err;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <fmt/format.h>
@@ -150,6 +151,7 @@ private:
       log(1, fmt::format("pressure: {} file(s), {} dates, {} of {} elements under a pressure change", o_.pressure.size(),
                          R.history->steps().size(), R.history->forced_cells(), R.model.tets.size()));
       for (const auto& d : R.cs.output_dates) R.history->add_step(d, R.cs.path + ": [output] dates");
+      R.history->check_steps(o_.until.value_or(std::numeric_limits<double>::infinity()));
       if (faulted()) {
         if (!R.cs.scenario_reference_date.empty()) {
           R.history->add_step(R.cs.scenario_reference_date, R.cs.path + ": [scenario] reference_date");

@@ -29,6 +29,7 @@ struct PressureHistory::File {
   // The two steps last read (values per file node).
   long cached[2] = {-1, -1};
   std::vector<double> values[2];
+  std::vector<char> checked;  // per step: read once, its values checked
   bool before_used = false, after_used = false;
 
   const std::vector<double>& step_values(long s) {
@@ -42,6 +43,7 @@ struct PressureHistory::File {
                  kMaxPressureChangePa);
     values[slot] = std::move(f.values);
     cached[slot] = s;
+    checked[static_cast<std::size_t>(s)] = 1;
     return values[slot];
   }
 };
@@ -165,6 +167,7 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
       dates.emplace(st[s].time, st[s].date);
     }
     // Check the field now rather than after hours of computing.
+    f->checked.assign(f->times.size(), 0);
     f->step_values(0);
     files_.push_back(std::move(f));
   }
@@ -227,6 +230,14 @@ std::vector<double> PressureHistory::file_values(File& f, double time) {
   const auto& b = f.step_values(s1);
   for (std::size_t i = 0; i < v.size(); ++i) v[i] = (1 - w) * v[i] + w * b[i];
   return v;
+}
+
+void PressureHistory::check_steps(double until) {
+  for (auto& f : files_)
+    for (std::size_t s = 0; s < f->times.size(); ++s) {
+      if (!f->checked[s]) f->step_values(static_cast<long>(s));
+      if (f->times[s] >= until) break;
+    }
 }
 
 std::vector<double> PressureHistory::cell_dp(double time) {

@@ -13,9 +13,19 @@
 
 namespace ugs {
 
+// TOML is UTF-8 (TOML 1.0): InputError "file:LINE: byte 0x9d at column 2 is not UTF-8 (expected a
+// UTF-8 text file)" at the first byte that does not start or continue a UTF-8 sequence (overlong
+// forms, surrogates and code points above U+10FFFF included). toml11 3.7.1 (Debian's
+// libtoml11-dev) reads out of bounds when a literal string or quoted key ('...', '''...''') is not
+// valid UTF-8 (its error path rewinds a location with an iterator of another buffer: parser.hpp,
+// parse_literal_string, parse_ml_literal_string; found by fuzz_ensemble_spec with the 3 bytes
+// '\x9d'), so every text is checked before toml11 sees it.
+void require_utf8(const std::string& text, const std::string& file);
+
 class TomlTable {
 public:
-  // Parses a file; syntax errors become InputError with the file and line.
+  // Parses a file (checked with require_utf8 first); syntax errors become InputError with the
+  // file and line.
   static TomlTable parse_file(const std::string& path);
 
   TomlTable(toml::value v, std::string file, std::string path_in_doc);

@@ -52,6 +52,11 @@ public:
   std::vector<double> forced_cell_dp(double time);
   // Number of elements under a pressure field.
   std::size_t forced_cells() const;
+  // Reads every step of every file that the times up to `until` interpolate from (the first step
+  // at or after `until` included), with the checks of a step's values (components, finite, in
+  // range), so that a damaged step is refused before the run starts rather than hours into it,
+  // after its notes were printed. Steps read before are not read again.
+  void check_steps(double until);
   // Notes about clamping (a file that starts late or ends early), for the log.
   std::vector<std::string> notes() const;
 
