@@ -190,7 +190,10 @@ private:
 
   // 2. The step plan: dates, output dates and checkpoints.
   void plan() {
-    if (rank_ == 0) {
+    // Collective: the plan reads the pressure history (checked already), and whatever rank 0 throws
+    // here must not leave the other ranks waiting in the broadcast below.
+    mech::collective(comm_, [&] {
+      if (rank_ != 0) return;
       const Root& R = *root_;
       StepRule rule;
       rule.after = R.restart_time;
@@ -214,7 +217,7 @@ private:
                                     R.cs.path, steps_.dates_in_run - steps_.size(), steps_.dates_in_run,
                                     R.cs.output_dates.empty() ? " and the results" : ""));
       }
-    }
+    });
     broadcast(comm_, steps_);
     first_after_ = steps_.size();
     for (std::size_t i = 0; i < steps_.size(); ++i)
