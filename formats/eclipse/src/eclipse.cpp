@@ -55,7 +55,7 @@ auto eclio(const std::string& path, F&& f) -> decltype(f()) {
     // One line, and printable: the message may quote bytes of a damaged file.
     for (char& c : what)
       if (!std::isprint(static_cast<unsigned char>(c))) c = c == '\n' ? ' ' : '?';
-    throw InputError(path, fmt::format("cannot be read as ECLIPSE binary output: {}", what));
+    throw InputError(path, fmt::format("cannot be read as ECLIPSE {} output: {}", is_formatted(path) ? "formatted" : "binary", what));
   }
 }
 
