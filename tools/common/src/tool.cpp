@@ -1,5 +1,6 @@
 #include "ugs/cli/tool.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -75,6 +76,18 @@ void set_activity(const std::string& what) {
   else std::fprintf(stderr, "%s: error: internal error: %s\n", g_tool.c_str(), what);
   std::fflush(stderr);
   std::_Exit(1);
+}
+// After the one error line nothing else may reach stderr. The libraries' shutdown still follows
+// (MPI_Finalize ends libhdf5 through its MPI_COMM_SELF callback, whatever H5dont_atexit says), and
+// after a damaged file libhdf5 1.10 cannot free its metadata cache: it printed "HDF5: infinite loop
+// closing library" and a line of object types (mutation_tools, seed 2908001). Their stderr goes
+// to /dev/null from here on.
+void end_stderr_after_the_error() {
+  std::fflush(stderr);
+  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (null < 0) return;
+  ::dup2(null, STDERR_FILENO);
+  ::close(null);
 }
 }  // namespace
 
@@ -164,15 +177,19 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
       p = q + 1;
     }
     std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), line.c_str());
+    end_stderr_after_the_error();
     return 2;
   } catch (const ComputeError& e) {
     std::fprintf(stderr, "%s: error: %s\n", g_tool.c_str(), with_flags(e.what()).c_str());
+    end_stderr_after_the_error();
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "%s: error: out of memory while %s\n", g_tool.c_str(), g_activity);
+    end_stderr_after_the_error();
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: internal error: %s\n", g_tool.c_str(), e.what());
+    end_stderr_after_the_error();
     return 1;
   }
 }
