@@ -600,6 +600,16 @@ Mesh make_plan_mesh(const PlanSpec& spec, PlanMeshStats* stats) {
   if (!(spec.hmax > 0) || !std::isfinite(spec.hmax)) throw InputError("", "hmax must be a size in metres, > 0");
   if (!(spec.grading > 0) || !std::isfinite(spec.grading)) throw InputError("", "grading must be > 0");
   if (spec.domain.empty()) throw InputError("", "the domain is empty");
+  {
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+    for (const auto& p : spec.domain)
+      for (const auto& q : p.outer) x0 = std::min(x0, q[0]), x1 = std::max(x1, q[0]), y0 = std::min(y0, q[1]), y1 = std::max(y1, q[1]);
+    if (x1 - x0 > kMaxPlanExtentM || y1 - y0 > kMaxPlanExtentM)
+      throw InputError("", fmt::format("the domain spans {:.0f} km x {:.0f} km (x {:.1f} .. {:.1f}, y {:.1f} .. {:.1f}), more than "
+                                       "{:.0f} km across: a coordinate out of place? (expected a field-scale plan in a projected "
+                                       "CRS, in metres)",
+                                       (x1 - x0) / 1e3, (y1 - y0) / 1e3, x0, x1, y0, y1, kMaxPlanExtentM / 1e3));
+  }
   // Refuse before meshing what would not fit in memory (a size of 1e-9 m grew gmsh's memory without
   // bound until std::bad_alloc).
   if (const PlanEstimate est = estimate_plan_triangles(spec); !(est.triangles <= spec.max_triangles))

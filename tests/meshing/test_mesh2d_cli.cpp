@@ -309,6 +309,22 @@ TEST_F(Mesh2dCli, TinySizesAreRefusedBeforeMeshing) {
   expect_bad(box + " --max-elements " + std::to_string(static_cast<long>(estimate / 2)), "--max-elements: the sizes ask for about");
 }
 
+// A coordinate out of place (4294967295 for 690000, mutation_tools seed 5301017) made a domain 4.3
+// million km long: 8e6 triangles, under the element limit, meshed for minutes. A domain more
+// than 1,000 km across is refused before meshing.
+TEST_F(Mesh2dCli, ADomainWiderThanAThousandKilometresIsRefused) {
+  test::write_vector(p("sliver.geojson").string(),
+                     {{"field", "POLYGON ((680000 4950000, 4294967295 4950000, 690000 4960000, 680000 4960000, 680000 4950000))", {}}});
+  expect_bad("--domain " + p("sliver.geojson").string() + " --hmax 2500",
+             "the domain spans 4294287 km x 10 km (x 680000.0 .. 4294967295.0, y 4950000.0 .. 4960000.0), more than 1000 km "
+             "across: a coordinate out of place?");
+  // 999 km across is meshed (coarsely).
+  test::write_vector(p("wide.geojson").string(),
+                     {{"field", "POLYGON ((0 0, 999000 0, 999000 1000, 0 1000, 0 0))", {}}});
+  const auto r = test::run(tool() + " -q --domain " + p("wide.geojson").string() + " --hmax 50000 -o " + p("wide.msh").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST_F(Mesh2dCli, OutOfMemoryIsExitOneWithOneLine) {
   // A 0.5 m refinement with the limit lifted, in 420 MB of address space: gmsh runs out of memory.
   test::write_vector(p("small.geojson").string(),

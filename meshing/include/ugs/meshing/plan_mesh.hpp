@@ -29,6 +29,11 @@ struct PlanLine {
   double size = 0;                      // target size along the line (m); 0 = constraint only
 };
 
+// The widest plan meshed (m): a domain wider than this is a coordinate out of place (4294967295
+// typed for 690000 made a sliver 4.3 million km long: 8e6 triangles under the element limit and
+// minutes of meshing), refused before meshing.
+constexpr double kMaxPlanExtentM = 1.0e6;
+
 struct PlanSpec {
   std::string domain_name = "domain";
   std::vector<geo::Polygon> domain;
