@@ -59,18 +59,6 @@ auto eclio(const std::string& path, F&& f) -> decltype(f()) {
   }
 }
 
-// A file cut short keeps its array headers readable up to the cut, and EclFile reads headers only:
-// loading the last array with data checks that its tail is there ("tail not matching header").
-// (No clearData() here: EclFile::get() then finds the array marked loaded but gone.)
-void check_complete(Opm::EclIO::EclFile& f) {
-  const auto list = f.getList();
-  for (std::size_t i = list.size(); i-- > 0;)
-    if (std::get<2>(list[i]) > 0) {
-      f.loadData(static_cast<int>(i));
-      return;
-    }
-}
-
 // EGrid's constructor indexes the small arrays that say which grid an array belongs to (LGR,
 // NNCHEAD, GRIDHEAD, MAPUNITS) without checking their sizes, and takes the last of two COORD (ZCORN,
 // ACTNUM, ...) arrays of one grid: walk the arrays as it does and refuse what it would misread.
@@ -142,7 +130,6 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
     std::array<int, 3> n;
     {
       Opm::EclIO::EclFile arrays(path);
-      check_complete(arrays);
       n = check_egrid_arrays(arrays, path);
     }
     Opm::EclIO::EGrid eg(path);
@@ -307,9 +294,7 @@ Restart::Restart(const std::string& path) : impl_(std::make_unique<Impl>()) {
   for (const auto& [number, file] : files) {
     auto ecl = eclio(file, [&] {
       check_records(file);
-      auto f = std::make_unique<Opm::EclIO::EclFile>(file);
-      check_complete(*f);
-      return f;
+      return std::make_unique<Opm::EclIO::EclFile>(file);
     });
     const auto names = ecl->arrayNames();
     // Step starts: each SEQNUM (unified), or the whole file (non-unified).
