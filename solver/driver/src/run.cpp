@@ -151,7 +151,6 @@ private:
       log(1, fmt::format("pressure: {} file(s), {} dates, {} of {} elements under a pressure change", o_.pressure.size(),
                          R.history->steps().size(), R.history->forced_cells(), R.model.tets.size()));
       for (const auto& d : R.cs.output_dates) R.history->add_step(d, R.cs.path + ": [output] dates");
-      R.history->check_steps(o_.until.value_or(std::numeric_limits<double>::infinity()));
       if (faulted()) {
         if (!R.cs.scenario_reference_date.empty()) {
           R.history->add_step(R.cs.scenario_reference_date, R.cs.path + ": [scenario] reference_date");
@@ -190,8 +189,8 @@ private:
 
   // 2. The step plan: dates, output dates and checkpoints.
   void plan() {
-    // Collective: the plan reads the pressure history (checked already), and whatever rank 0 throws
-    // here must not leave the other ranks waiting in the broadcast below.
+    // Collective: the plan reads and checks the pressure history, and whatever rank 0 throws here
+    // must not leave the other ranks waiting in the broadcast below.
     mech::collective(comm_, [&] {
       if (rank_ != 0) return;
       const Root& R = *root_;
@@ -204,6 +203,9 @@ private:
       if (faulted()) rule.turning_rule = mech::TurningRule::Extremes;
       if (set_.search) rule.must_take.insert(set_.ref_time);  // the search reruns from the state there
       steps_ = plan_steps(*root_->history, R.cs, rule);
+      // Every pressure step the run will read, checked before any note is printed (those the plan
+      // read for its turning points are not read again).
+      root_->history->check_steps(steps_.times.empty() ? -std::numeric_limits<double>::infinity() : steps_.times.back());
       if (rule.turning_points) {
         log(1, fmt::format("turning-point steps: {} of {} dates ({}, output dates, the last date)", steps_.size(),
                            steps_.dates_in_run,
