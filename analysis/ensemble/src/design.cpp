@@ -41,6 +41,9 @@ std::vector<std::vector<double>> rows(const OT::Sample& s) {
 
 double quantile(const Distribution& d, double q) { return to_ot(d).computeQuantile(q)[0]; }
 
+std::size_t sobol_dimensions() { return static_cast<std::size_t>(OT::SobolSequence::MaximumDimension); }
+std::size_t max_sobol_parameters() { return sobol_dimensions() / 2; }
+
 Design make_design(const EnsembleSpec& spec) {
   const std::size_t d = spec.parameters.size();
   if (spec.members < minimum_members(spec.method, d))
@@ -57,9 +60,9 @@ Design make_design(const EnsembleSpec& spec) {
       break;
     }
     case DesignMethod::sobol: {
-      if (2 * d > OT::SobolSequence::MaximumDimension)  // read_spec refused it already (A and B: 2 d dimensions)
+      if (d > max_sobol_parameters())  // read_spec refused it already
         throw InputError(spec.path, fmt::format("the sobol design takes at most {} parameters (OpenTURNS' Sobol' sequence), here {}",
-                                                OT::SobolSequence::MaximumDimension / 2, d));
+                                                max_sobol_parameters(), d));
       design.base = spec.members / (d + 2);
       // A Sobol' sequence (not randomised: no seed needed) through the joint distribution's
       // quantiles; SobolIndicesExperiment lays out the A, B and pick-freeze blocks.

@@ -1,7 +1,6 @@
 #include "ugs/ensemble/spec.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <set>
 
@@ -194,13 +193,11 @@ EnsembleSpec read_spec(const std::string& path) {
     p.distribution = read_distribution(t);
     s.parameters.push_back(std::move(p));
   }
-  // OpenTURNS' Sobol' sequence has 1111 dimensions (OT::SobolSequence::MaximumDimension in 1.20;
-  // make_design checks it again) and the blocks A and B take 2 d of them: beyond, it throws its own
-  // exception.
-  if (s.method == DesignMethod::sobol && s.parameters.size() > 555)
-    throw design.error("method", fmt::format("the sobol design takes at most 555 parameters (OpenTURNS' Sobol' sequence has 1111 "
+  // Beyond max_sobol_parameters() OpenTURNS throws its own exception.
+  if (s.method == DesignMethod::sobol && s.parameters.size() > max_sobol_parameters())
+    throw design.error("method", fmt::format("the sobol design takes at most {} parameters (OpenTURNS' Sobol' sequence has {} "
                                              "dimensions, 2 per parameter), here {}",
-                                             s.parameters.size()));
+                                             max_sobol_parameters(), sobol_dimensions(), s.parameters.size()));
   const std::size_t need = minimum_members(s.method, s.parameters.size());
   if (s.members < need)
     throw design.error("members", fmt::format("{} members are fewer than the {} design needs with {} parameters (at least {})",

@@ -170,7 +170,8 @@ int Tool::run(int argc, char** argv, const std::function<void()>& body) {
   } catch (const InputError& e) {
     // Bad input is one line, also when one pass found several problems (ErrorList: one per
     // line of what()): they follow each other on it, separated by "; ".
-    std::string all = e.what(), line;
+    const std::string all = e.what();
+    std::string line;
     for (std::size_t p = 0; p <= all.size();) {
       const auto q = std::min(all.find('\n', p), all.size());
       line += (line.empty() ? "" : "; ") + with_flags(all.substr(p, q - p));

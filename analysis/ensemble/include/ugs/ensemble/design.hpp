@@ -26,6 +26,12 @@ struct Design {
 
 Design make_design(const EnsembleSpec& spec);
 
+// The dimensions of OpenTURNS' Sobol' sequence (OT::SobolSequence::MaximumDimension, 1111 in 1.20),
+// and the most parameters a sobol design takes: the blocks A and B take 2 per parameter.
+// read_spec refuses more with the file's line; make_design checks it again.
+std::size_t sobol_dimensions();
+std::size_t max_sobol_parameters();
+
 // The quantile of a parameter's distribution at probability q in (0, 1) (OpenTURNS).
 double quantile(const Distribution& d, double q);
 
