@@ -29,6 +29,9 @@ void gdal_init() {
   static std::once_flag once;
   std::call_once(once, [] {
     GDALAllRegister();
+    // ZMAP+ headers give the outer nodes (xmin .. xmax over columns - 1 cells): without this GDAL's
+    // ZMap driver takes them as the outer pixel edges and spreads the grid over one cell too few.
+    CPLSetConfigOption("ZMAP_PIXEL_IS_POINT", "TRUE");
     // The block cache's size is read from the configuration on its first use, unguarded: read
     // here once, so that rasters sampled on two threads (prepare_model) do not both set it.
     GDALGetCacheMax64();

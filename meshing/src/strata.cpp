@@ -14,6 +14,7 @@
 #include "ugs/formats/run_beside.hpp"
 #include "ugs/formats/toml_reader.hpp"
 #include "ugs/meshing/geodata.hpp"
+#include "ugs/meshing/horizon_grids.hpp"
 #include "ugs/meshing/natural_neighbour.hpp"
 
 namespace ugs {
@@ -50,16 +51,32 @@ Strata read_strata(const std::string& path) {
 
   std::set<std::string> names;
   for (const auto& t : root.tables("surface")) {
-    t.reject_unknown({"name", "raster", "band", "constant", "picks", "unconformity"});
+    t.reject_unknown({"name", "raster", "band", "grid", "crs", "constant", "picks", "unconformity"});
     StrataSurface f;
     f.where = t.where();
     f.name = t.string("name");
     check_name(t, "name", f.name);
     if (!names.insert(f.name).second) throw t.error("name", "surface '" + f.name + "' is defined twice");
-    const int sources = t.has("raster") + t.has("constant") + t.has("picks");
+    const int sources = t.has("raster") + t.has("grid") + t.has("constant") + t.has("picks");
     if (sources != 1)
-      throw InputError(f.where, fmt::format("surface '{}': give exactly one of raster, constant or picks", f.name));
-    if (t.has("raster")) {
+      throw InputError(f.where, fmt::format("surface '{}': give exactly one of raster, grid, constant or picks", f.name));
+    if (t.has("crs") && !t.has("grid"))
+      throw t.error("crs", fmt::format("surface '{}': crs names the CRS of a grid file (rasters carry their own)", f.name));
+    if (t.has("grid")) {
+      f.source = StrataSurface::Source::Grid;
+      f.path = resolve_relative(path, t.string("grid"));
+      if (t.has("crs")) {
+        f.crs = t.string("crs");
+        f.crs_where = t.where("crs");
+      } else if (!root.has("crs")) {
+        // IRAP, CPS-3, ZMAP+ and TSurf files carry no CRS a program can read: guessing one would
+        // put a horizon delivered in another CRS kilometres away without a word.
+        throw InputError(f.where, fmt::format("surface '{}': the grid file {} carries no CRS and none is named: add crs = "
+                                              "\"EPSG:...\" to the surface, or at the top of the file for all of them",
+                                              f.name, f.path));
+      }
+      if (t.has("band")) throw t.error("band", "only a raster surface has bands");
+    } else if (t.has("raster")) {
       f.source = StrataSurface::Source::Raster;
       f.path = resolve_relative(path, t.string("raster"));
       const long long band = t.integer_opt("band").value_or(1);
@@ -182,10 +199,37 @@ std::string which_columns(const Plan& plan, const std::vector<std::uint32_t>& co
                      thousands(cols.size()), thousands(plan.num_columns()), x0, x1, y0, y1, column_at(plan, cols[0]));
 }
 
-std::vector<double> evaluate_surface(const StrataSurface& s, const Plan& plan, const std::string& model_wkt) {
+std::vector<double> evaluate_surface(const StrataSurface& s, const Plan& plan, const std::string& model_wkt,
+                                     std::vector<std::string>& warnings, std::vector<std::string>& notes) {
   const std::size_t nc = plan.num_columns();
   auto fail = [&](const std::string& msg) { return InputError(s.where, fmt::format("surface '{}': {}", s.name, msg)); };
   switch (s.source) {
+    case StrataSurface::Source::Grid: {
+      const std::string surface_wkt = s.crs.empty() ? model_wkt : geo::crs_wkt(s.crs, s.crs_where);
+      geo::HorizonSampling h;
+      try {
+        h = geo::sample_horizon(s.path, surface_wkt, plan.xy, model_wkt);
+      } catch (const InputError& e) {
+        throw fail(e.what());
+      }
+      const std::string what = fmt::format("{} ({}, {})", s.path, h.format, geo::crs_label(surface_wkt));
+      if (h.outside.size() == nc) {
+        double x0 = plan.xy[0][0], x1 = x0, y0 = plan.xy[0][1], y1 = y0;
+        for (const auto& p : plan.xy)
+          x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
+        throw fail(fmt::format("{} lies apart from every plan column: it spans x {:.0f} .. {:.0f}, y {:.0f} .. {:.0f}, the "
+                               "plan x {:.0f} .. {:.0f}, y {:.0f} .. {:.0f} ({}); if the grid is in another CRS, name it "
+                               "with crs = \"EPSG:...\" on the surface",
+                               what, h.extent[0], h.extent[2], h.extent[1], h.extent[3], x0, x1, y0, y1,
+                               geo::crs_label(model_wkt)));
+      }
+      if (!h.outside.empty()) throw fail(fmt::format("{} does not cover {}", what, which_columns(plan, h.outside)));
+      if (!h.undefined.empty())
+        throw fail(fmt::format("{} has undefined nodes under {}", what, which_columns(plan, h.undefined)));
+      for (auto& c : h.cleaned) warnings.push_back(fmt::format("surface '{}': {}", s.name, c));
+      for (auto& c : h.notes) notes.push_back(fmt::format("surface '{}': {}", s.name, c));
+      return h.values;
+    }
     case StrataSurface::Source::Constant: return std::vector<double>(nc, s.constant);
     case StrataSurface::Source::Raster: {
       geo::RasterSampling r;
@@ -276,7 +320,7 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
   PreparedModel pm;
   const std::size_t nc = plan.num_columns(), nt = plan.triangles.size(), ns = strata.surfaces.size();
 
-  // Model CRS: given, else the first raster's, else EPSG:32632.
+  // Model CRS: given, else the first raster's, else the first grid surface's, else EPSG:32632.
   std::string model_wkt;
   if (!strata.crs.empty()) {
     model_wkt = geo::crs_wkt(strata.crs, strata.crs_where);
@@ -290,6 +334,8 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
         }
         if (!model_wkt.empty()) break;
       }
+    for (const auto& s : strata.surfaces)
+      if (model_wkt.empty() && s.source == StrataSurface::Source::Grid && !s.crs.empty()) model_wkt = geo::crs_wkt(s.crs, s.crs_where);
     if (model_wkt.empty()) model_wkt = geo::crs_wkt("EPSG:32632", strata.file);
     pm.notes.push_back("model CRS " + geo::crs_label(model_wkt) + " (no crs in " + strata.file + ")");
   }
@@ -303,9 +349,10 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
   z.assign(ns, {});
   {
     std::vector<std::exception_ptr> failed(ns);
+    std::vector<std::vector<std::string>> warned(ns), noted(ns);
     auto sample = [&](std::size_t first, std::size_t step) {
       for (std::size_t i = first; i < ns; i += step) try {
-          z[i] = evaluate_surface(strata.surfaces[i], plan, model_wkt);
+          z[i] = evaluate_surface(strata.surfaces[i], plan, model_wkt, warned[i], noted[i]);
         } catch (...) {
           failed[i] = std::current_exception();
         }
@@ -317,6 +364,10 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
     }
     for (const auto& f : failed)
       if (f) std::rethrow_exception(f);
+    for (std::size_t i = 0; i < ns; ++i) {
+      pm.warnings.insert(pm.warnings.end(), warned[i].begin(), warned[i].end());
+      pm.notes.insert(pm.notes.end(), noted[i].begin(), noted[i].end());
+    }
   }
   std::vector<StackSurface> stack;
   for (const auto& s : strata.surfaces) stack.push_back({s.name, s.where, s.unconformity});

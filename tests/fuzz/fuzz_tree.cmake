@@ -19,7 +19,7 @@ add_subdirectory(formats)
 set(_m ${PROJECT_SOURCE_DIR}/meshing/src)
 add_library(ugs_fuzz_readers STATIC
   ${_m}/strata.cpp ${_m}/natural_neighbour.cpp ${_m}/surface_stack.cpp ${_m}/plan.cpp
-  ${_m}/fault_traces.cpp ${_m}/fault_traces_ogr.cpp ${_m}/geodata.cpp ${_m}/plan_inputs.cpp
+  ${_m}/fault_traces.cpp ${_m}/fault_traces_ogr.cpp ${_m}/geodata.cpp ${_m}/plan_inputs.cpp ${_m}/horizon_grids.cpp
   ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
   ${PROJECT_SOURCE_DIR}/analysis/insar/src/ps_data.cpp ${PROJECT_SOURCE_DIR}/analysis/insar/src/crs.cpp
   ${PROJECT_SOURCE_DIR}/analysis/insar/src/case_params.cpp)

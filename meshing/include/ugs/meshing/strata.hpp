@@ -1,6 +1,6 @@
 // The stratigraphy file of ugs-meshgen (TOML, docs/meshing.md) and its evaluation on a plan:
-// surfaces top to bottom (constant, GDAL raster sampled bilinearly, or scattered picks through
-// natural-neighbour interpolation), units between them with their sub-layers, material rules
+// surfaces top to bottom (constant, GDAL raster sampled bilinearly, horizon grid or TSurf of a
+// modelling package, or scattered picks through natural-neighbour interpolation), units between them with their sub-layers, material rules
 // (unit + optional polygon -> material, first match wins) and the depth ranges of the plan's faults.
 #pragma once
 #include <optional>
@@ -15,11 +15,14 @@
 namespace ugs {
 
 struct StrataSurface {
-  enum class Source { Constant, Raster, Picks };
+  // Grid: a horizon file of a modelling package (IRAP classic ASCII, CPS-3 ASCII, ZMAP+, GOCAD
+  // TSurf; horizon_grids.hpp), told by its content.
+  enum class Source { Constant, Raster, Picks, Grid };
   std::string name, where;     // where = "file:line" of its [[surface]] table
   Source source = Source::Constant;
   double constant = 0;
-  std::string path;            // raster or picks file, resolved against the strata file's folder
+  std::string path;            // raster, picks or grid file, resolved against the strata file's folder
+  std::string crs, crs_where;  // a grid's CRS as written ("" = the file's crs)
   int band = 1;
   bool unconformity = false;
 };

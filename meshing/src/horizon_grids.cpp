@@ -1,0 +1,441 @@
+// Horizon grids and triangulated surfaces sampled at the plan's columns. The bilinear stencil is
+// geo::sample_raster's (cell corners weighted (1-fx)(1-fy), fx(1-fy), (1-fx)fy, fx fy, zero weights
+// skipped, summed in that order), with the grid's nodes where sample_raster has pixel centres.
+#include "ugs/meshing/horizon_grids.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <fmt/format.h>
+
+#include "ugs/formats/error.hpp"
+#include "ugs/formats/io.hpp"
+#include "ugs/meshing/gdal_util.hpp"
+
+namespace ugs::geo {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// ---- ZMAP+ ----------------------------------------------------------------------------------------
+
+std::vector<std::string> split_commas(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : line) {
+    if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != ' ' && c != '\t' && c != '\r') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+long long whole(const std::string& t, const std::string& where, const std::string& what, long long lo, long long hi) {
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(t.c_str(), &end, 10);
+  if (t.empty() || *end || errno || v < lo || v > hi)
+    throw InputError(where, fmt::format("{} '{}' is not a whole number from {} to {}", what, t.substr(0, 40), lo, hi));
+  return v;
+}
+
+// The lines GDAL's ZMap driver (3.6) reads: each column starts a line, each line holds the column's
+// next min(per_line, left) values in fields of `width` characters. GDAL fails on a line that does
+// not, without saying where, and ignores values after the last column: both are said here.
+void check_zmap_layout(const std::string& path) {
+  auto in = InputStream::open(path, "a ZMAP+ grid");
+  std::string line;
+  std::size_t n = 0;
+  auto next = [&] {
+    if (!in->getline(line)) return false;
+    ++n;
+    return true;
+  };
+  auto at = [&] { return fmt::format("{}:{}", in->name(), n); };
+  do {
+    if (!next()) throw InputError(at(), "the file ends before the ZMAP+ header");
+  } while (line.starts_with("!"));
+  auto h1 = split_commas(line.substr(line.starts_with("@") ? 1 : 0));
+  if (h1.size() != 3) throw InputError(at(), "expected the ZMAP+ header line @name, GRID, values per line");
+  const long long per_line = whole(h1[2], at(), "values per line", 1, 1000);
+  if (!next()) throw InputError(at(), "the file ends inside the ZMAP+ header");
+  const auto h2 = split_commas(line);
+  if (h2.size() != 5) throw InputError(at(), "expected the ZMAP+ header line field width, null value, null text, decimals, 1");
+  const long long width = whole(h2[0], at(), "field width", 1, 39);
+  if (!next()) throw InputError(at(), "the file ends inside the ZMAP+ header");
+  const auto h3 = split_commas(line);
+  if (h3.size() != 6) throw InputError(at(), "expected the ZMAP+ header line rows, columns, xmin, xmax, ymin, ymax");
+  const long long rows = whole(h3[0], at(), "rows", 2, 10'000'000), cols = whole(h3[1], at(), "columns", 2, 10'000'000);
+  if (!next() || !next()) throw InputError(at(), "the file ends inside the ZMAP+ header");
+  if (!line.starts_with("@")) throw InputError(at(), "expected the '@' line that ends the ZMAP+ header");
+  for (long long c = 0; c < cols; ++c)
+    for (long long left = rows; left > 0;) {
+      const long long want = std::min(left, per_line);
+      if (!next())
+        throw InputError(at(), fmt::format("the file ends in column {} of {} with {} of its {} values missing (the "
+                                           "header's {} rows x {} columns disagree with the values)",
+                                           c + 1, cols, left, rows, rows, cols));
+      std::size_t tokens = 0;
+      for (std::size_t i = 0; i < line.size();) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+        if (i < line.size()) ++tokens;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+      }
+      if (tokens != static_cast<std::size_t>(want))
+        throw InputError(at(), fmt::format("{} values where column {} of {} expects {} (the header's {} values per line, "
+                                           "{} rows x {} columns disagree with the values)",
+                                           tokens, c + 1, cols, want, per_line, rows, cols));
+      if (line.size() != static_cast<std::size_t>(want * width))
+        throw InputError(at(), fmt::format("the line is {} characters long, {} fields of {} make {} (ZMAP+ values are "
+                                           "fixed-width fields; no spaces at the end of a line)",
+                                           line.size(), want, width, want * width));
+      left -= want;
+    }
+  while (next())
+    if (line.find_first_not_of(" \t") != std::string::npos)
+      throw InputError(at(), fmt::format("values after the last of the header's {} columns of {} rows (the header "
+                                         "disagrees with the values)",
+                                         cols, rows));
+}
+
+// ---- triangulated surfaces --------------------------------------------------------------------
+
+std::string vertex_at(const TriangulatedSurface& s, std::uint32_t v) {
+  const auto& p = s.vertices[v];
+  return fmt::format("vertex of line {} ({:.2f}, {:.2f}, {:.2f})", s.vertex_line[v], p[0], p[1], p[2]);
+}
+
+InputError at_triangle(const TriangulatedSurface& s, std::size_t t, const std::string& what) {
+  return InputError(fmt::format("{}:{}", s.path, s.triangle_line[t]), what);
+}
+
+struct Dsu {
+  std::vector<std::uint32_t> p;
+  explicit Dsu(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
+  std::uint32_t find(std::uint32_t a) {
+    while (p[a] != a) a = p[a] = p[p[a]];
+    return a;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) p[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+double cross2(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+}  // namespace
+
+HorizonGrid read_zmap_grid(const std::string& path) {
+  check_zmap_layout(path);
+  QuietGdal quiet;
+  GdalDatasetPtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds || !ds->GetDriver() || std::string(ds->GetDriver()->GetDescription()) != "ZMap")
+    throw InputError(path, fmt::format("GDAL's ZMap driver cannot read it: {}", gdal_error()));
+  double gt[6];
+  if (ds->GetGeoTransform(gt) != CE_None || gt[2] != 0 || gt[4] != 0 || !(gt[1] > 0) || !(gt[5] < 0))
+    throw InputError(path, "GDAL gives the ZMAP+ grid no usable georeferencing (xmin < xmax, ymin < ymax expected)");
+  HorizonGrid g;
+  g.path = path;
+  g.format = "ZMAP+";
+  g.nx = static_cast<std::size_t>(ds->GetRasterXSize());
+  g.ny = static_cast<std::size_t>(ds->GetRasterYSize());
+  // ZMAP_PIXEL_IS_POINT (gdal_init): the first pixel's centre is the node (xmin, ymax).
+  g.dx = gt[1];
+  g.dy = -gt[5];
+  g.x0 = gt[0] + 0.5 * gt[1];
+  g.y0 = gt[3] + (static_cast<double>(g.ny) - 0.5) * gt[5];
+  std::vector<double> buf(g.nx * g.ny);
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(g.nx), static_cast<int>(g.ny), buf.data(), static_cast<int>(g.nx),
+                     static_cast<int>(g.ny), GDT_Float64, 0, 0) != CE_None)
+    throw InputError(path, "GDAL's ZMap driver cannot read the values: " + gdal_error());
+  int has_nodata = 0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+  g.z.resize(buf.size());
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      double v = buf[(g.ny - 1 - j) * g.nx + i];
+      if (!std::isfinite(v) || (has_nodata && std::fabs(v - nodata) <= 1e-9 * std::max(1.0, std::fabs(nodata)))) {
+        v = nan;
+        ++g.undefined;
+      }
+      g.z[j * g.nx + i] = v;
+    }
+  return g;
+}
+
+HorizonSampling sample_grid(const HorizonGrid& g, std::span<const XY> points) {
+  HorizonSampling out;
+  out.format = g.format;
+  const std::size_t n = points.size();
+  out.values.assign(n, nan);
+  const double a = g.rotation_deg * (M_PI / 180.0), ca = std::cos(a), sa = std::sin(a);
+  {
+    double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+    for (std::size_t i : {std::size_t{0}, g.nx - 1})
+      for (std::size_t j : {std::size_t{0}, g.ny - 1}) {
+        const auto p = g.node(i, j);
+        x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]), x1 = std::max(x1, p[0]), y1 = std::max(y1, p[1]);
+      }
+    out.extent = {x0, y0, x1, y1};
+  }
+  const double nxm = static_cast<double>(g.nx - 1), nym = static_cast<double>(g.ny - 1);
+  constexpr double eps = 1e-9;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double ex = points[k][0] - g.x0, ey = points[k][1] - g.y0;
+    const double pu = (ca * ex + sa * ey) / g.dx, pv = (-sa * ex + ca * ey) / g.dy;
+    if (!(pu >= -eps && pu <= nxm + eps && pv >= -eps && pv <= nym + eps)) {
+      out.outside.push_back(static_cast<std::uint32_t>(k));
+      continue;
+    }
+    const double u = std::clamp(pu, 0.0, nxm), v = std::clamp(pv, 0.0, nym);
+    const std::size_t i0 = std::min(static_cast<std::size_t>(std::floor(u)), g.nx - 2);
+    const std::size_t j0 = std::min(static_cast<std::size_t>(std::floor(v)), g.ny - 2);
+    const double fx = u - static_cast<double>(i0), fy = v - static_cast<double>(j0);
+    const double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+    const double z[4] = {g.at(i0, j0), g.at(i0 + 1, j0), g.at(i0, j0 + 1), g.at(i0 + 1, j0 + 1)};
+    double sum = 0;
+    bool good = true;
+    for (int c = 0; c < 4; ++c) {
+      if (w[c] == 0) continue;
+      if (std::isnan(z[c])) {
+        good = false;
+        break;
+      }
+      sum += w[c] * z[c];
+    }
+    if (good) out.values[k] = sum;
+    else out.undefined.push_back(static_cast<std::uint32_t>(k));
+  }
+  return out;
+}
+
+void check_horizon_surface(const TriangulatedSurface& s) {
+  const std::size_t nt = s.triangles.size(), nv = s.vertices.size();
+  // Edges: each undirected edge and the triangles using it, with the direction they run it.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::uint32_t, bool>>> edges;
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back({static_cast<std::uint32_t>(t), a < b});
+    }
+  Dsu corners(3 * nt);
+  auto corner = [&](std::uint32_t t, std::uint32_t v) {
+    for (std::uint32_t k = 0; k < 3; ++k)
+      if (s.triangles[t][k] == v) return 3 * t + k;
+    return 3 * t;
+  };
+  for (const auto& [e, users] : edges) {
+    if (users.size() > 2)
+      throw at_triangle(s, users[2].first,
+                        fmt::format("non-manifold edge: the edge from the {} to the {} is shared by {} triangles (lines "
+                                    "{}, {}, {}{}); a horizon's edge borders at most two",
+                                    vertex_at(s, e.first), vertex_at(s, e.second), users.size(),
+                                    s.triangle_line[users[0].first], s.triangle_line[users[1].first],
+                                    s.triangle_line[users[2].first], users.size() > 3 ? ", ..." : ""));
+    if (users.size() == 2) {
+      if (users[0].second == users[1].second)
+        throw at_triangle(s, users[1].first,
+                          fmt::format("inconsistent orientation: this triangle and its neighbour of line {} run their "
+                                      "shared edge ({} to {}) the same way (expected opposite ways: renumber one "
+                                      "triangle's corners, or re-orient the surface in the exporting package)",
+                                      s.triangle_line[users[0].first], vertex_at(s, e.first), vertex_at(s, e.second)));
+      for (auto v : {e.first, e.second}) corners.unite(corner(users[0].first, v), corner(users[1].first, v));
+    }
+  }
+  // A vertex where two fans of triangles meet only at the vertex.
+  std::vector<std::uint32_t> root(nv, std::numeric_limits<std::uint32_t>::max());
+  for (std::uint32_t t = 0; t < nt; ++t)
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = s.triangles[t][k], r = corners.find(3 * t + k);
+      if (root[v] == std::numeric_limits<std::uint32_t>::max()) root[v] = r;
+      else if (root[v] != r)
+        throw at_triangle(s, t,
+                          fmt::format("non-manifold vertex: the {} joins triangles that share no edge around it (two "
+                                      "sheets touching at one point)",
+                                      vertex_at(s, v)));
+    }
+  // Overturned triangles: with one orientation throughout, a single-valued surface faces all up or
+  // all down in plan; triangles vertical in plan (no area) are allowed and never sampled.
+  double scale = 0;
+  for (const auto& p : s.vertices) scale = std::max({scale, std::fabs(p[0]), std::fabs(p[1])});
+  std::size_t up = 0, down = 0, first_up = 0, first_down = 0;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& a = s.vertices[s.triangles[t][0]];
+    const auto& b = s.vertices[s.triangles[t][1]];
+    const auto& c = s.vertices[s.triangles[t][2]];
+    const double d = cross2(a, b, c);
+    const double l2 = std::max({(b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]),
+                                (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1])});
+    if (std::fabs(d) <= 1e-9 * l2) continue;
+    if (d > 0 && up++ == 0) first_up = t;
+    if (d < 0 && down++ == 0) first_down = t;
+  }
+  if (up && down) {
+    const bool few_down = down <= up;
+    const std::size_t t = few_down ? first_down : first_up;
+    throw at_triangle(s, t,
+                      fmt::format("the surface folds over itself: {} triangle(s) face {} in plan while {} face {} (first "
+                                  "the other way: line {}); a horizon must have one elevation at each x, y",
+                                  few_down ? down : up, few_down ? "down" : "up", few_down ? up : down,
+                                  few_down ? "up" : "down", s.triangle_line[few_down ? first_up : first_down]));
+  }
+  // Self-intersections (CGAL PMP on the mesh the checks above make possible).
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Mesh = CGAL::Surface_mesh<K::Point_3>;
+  Mesh m;
+  std::vector<Mesh::Vertex_index> vi(nv);
+  for (std::size_t v = 0; v < nv; ++v)
+    vi[v] = m.add_vertex(K::Point_3(s.vertices[v][0], s.vertices[v][1], s.vertices[v][2]));
+  std::vector<std::size_t> face_triangle;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto f = m.add_face(vi[s.triangles[t][0]], vi[s.triangles[t][1]], vi[s.triangles[t][2]]);
+    if (f == Mesh::null_face())
+      throw at_triangle(s, t, "the triangle cannot join the surface made by the ones before it (non-manifold)");
+    face_triangle.push_back(t);
+  }
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> hits;
+  CGAL::Polygon_mesh_processing::self_intersections(m, std::back_inserter(hits));
+  if (!hits.empty()) {
+    std::size_t a = face_triangle[hits[0].first], b = face_triangle[hits[0].second];
+    for (const auto& [f, g] : hits) {  // the first pair in file order, whatever CGAL's order
+      std::size_t p = face_triangle[f], q = face_triangle[g];
+      if (p > q) std::swap(p, q);
+      if (std::min(a, b) > p || (std::min(a, b) == p && std::max(a, b) > q)) a = p, b = q;
+    }
+    if (a > b) std::swap(a, b);
+    throw at_triangle(s, b,
+                      fmt::format("self-intersection: the triangle crosses the one of line {} ({} pair(s) of triangles "
+                                  "intersect)",
+                                  s.triangle_line[a], hits.size()));
+  }
+}
+
+HorizonSampling sample_tsurf(const TriangulatedSurface& s, std::span<const XY> points) {
+  HorizonSampling out;
+  out.format = "GOCAD TSurf";
+  const std::size_t n = points.size(), nt = s.triangles.size();
+  out.values.assign(n, nan);
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (const auto& p : s.vertices)
+    x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]), x1 = std::max(x1, p[0]), y1 = std::max(y1, p[1]);
+  out.extent = {x0, y0, x1, y1};
+  // A uniform bin grid over the surface's extent, about one triangle per bin.
+  const std::size_t nb = std::clamp<std::size_t>(static_cast<std::size_t>(std::sqrt(static_cast<double>(nt))), 1, 2048);
+  const double bw = std::max((x1 - x0) / static_cast<double>(nb), 1e-300),
+               bh = std::max((y1 - y0) / static_cast<double>(nb), 1e-300);
+  auto bin = [&](double v, double lo, double w) {
+    return std::min(nb - 1, static_cast<std::size_t>(std::max(0.0, std::floor((v - lo) / w))));
+  };
+  std::vector<std::vector<std::uint32_t>> bins(nb * nb);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    double tx0 = std::numeric_limits<double>::infinity(), ty0 = tx0, tx1 = -tx0, ty1 = -tx0;
+    for (auto v : s.triangles[t]) {
+      const auto& p = s.vertices[v];
+      tx0 = std::min(tx0, p[0]), ty0 = std::min(ty0, p[1]), tx1 = std::max(tx1, p[0]), ty1 = std::max(ty1, p[1]);
+    }
+    for (std::size_t j = bin(ty0, y0, bh); j <= bin(ty1, y0, bh); ++j)
+      for (std::size_t i = bin(tx0, x0, bw); i <= bin(tx1, x0, bw); ++i) bins[j * nb + i].push_back(t);
+  }
+  const double tol_z = 1e-6;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double px = points[k][0], py = points[k][1];
+    const double pad = 1e-9 * std::max(x1 - x0, y1 - y0);
+    if (!(px >= x0 - pad && px <= x1 + pad && py >= y0 - pad && py <= y1 + pad)) {
+      out.outside.push_back(static_cast<std::uint32_t>(k));
+      continue;
+    }
+    bool found = false;
+    std::uint32_t first = 0;
+    double z = nan;
+    for (auto t : bins[bin(py, y0, bh) * nb + bin(px, x0, bw)]) {
+      const auto& a = s.vertices[s.triangles[t][0]];
+      const auto& b = s.vertices[s.triangles[t][1]];
+      const auto& c = s.vertices[s.triangles[t][2]];
+      const double d = cross2(a, b, c);
+      if (d == 0) continue;
+      const std::array<double, 3> p{px, py, 0};
+      const double l0 = cross2(p, b, c) / d, l1 = cross2(a, p, c) / d, l2 = cross2(a, b, p) / d;
+      constexpr double eps = 1e-9;
+      if (l0 < -eps || l1 < -eps || l2 < -eps) continue;
+      const double zt = l0 * a[2] + l1 * b[2] + l2 * c[2];
+      if (!found) {
+        found = true, first = t, z = zt;
+      } else if (std::fabs(zt - z) > tol_z) {
+        throw at_triangle(s, t,
+                          fmt::format("the surface has two elevations at x={:.2f}, y={:.2f}: {:.3f} m on this triangle, "
+                                      "{:.3f} m on the one of line {} (a horizon must be single-valued)",
+                                      px, py, zt, z, s.triangle_line[first]));
+      }
+    }
+    if (found) out.values[k] = z;
+    else out.outside.push_back(static_cast<std::uint32_t>(k));
+  }
+  return out;
+}
+
+HorizonSampling sample_horizon(const std::string& path, const std::string& surface_wkt, std::span<const XY> points,
+                               const std::string& points_wkt) {
+  const HorizonFormat f = detect_horizon_format(path);
+  std::vector<XY> pts(points.begin(), points.end());
+  std::vector<char> moved(pts.size(), 1);
+  if (auto ct = transformation(points_wkt, surface_wkt, path)) {
+    QuietGdal quiet;
+    std::vector<double> x(pts.size()), y(pts.size());
+    std::vector<int> ok(pts.size(), 0);
+    for (std::size_t i = 0; i < pts.size(); ++i) x[i] = pts[i][0], y[i] = pts[i][1];
+    ct->Transform(static_cast<int>(pts.size()), x.data(), y.data(), nullptr, ok.data());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      pts[i] = {x[i], y[i]};
+      moved[i] = ok[i] != 0;
+    }
+  }
+  HorizonSampling out;
+  switch (f) {
+    case HorizonFormat::Irap: out = sample_grid(read_irap_grid(path), pts); break;
+    case HorizonFormat::Cps3: out = sample_grid(read_cps3_grid(path), pts); break;
+    case HorizonFormat::Zmap: out = sample_grid(read_zmap_grid(path), pts); break;
+    case HorizonFormat::Tsurf: {
+      const TriangulatedSurface s = read_gocad_tsurf(path);
+      check_horizon_surface(s);
+      out = sample_tsurf(s, pts);
+      if (s.merged_vertices)
+        out.cleaned.push_back(fmt::format("{}: {} vertices at the same x, y, z as an earlier one were merged into it",
+                                          path, s.merged_vertices));
+      if (s.depth_positive) out.notes.push_back(fmt::format("{}: ZPOSITIVE Depth: z read as depth (elevation = -z)", path));
+      break;
+    }
+    case HorizonFormat::Unknown:
+      throw InputError(path, "is none of the horizon formats read (expected IRAP classic ASCII starting -996, CPS-3 "
+                             "ASCII starting FSASCI, ZMAP+ starting @name, GRID, or GOCAD TSurf)");
+  }
+  // Points that could not be transformed count as outside.
+  std::vector<std::uint32_t> outside;
+  for (std::size_t i = 0, o = 0; i < pts.size(); ++i) {
+    const bool was = o < out.outside.size() && out.outside[o] == i;
+    if (was) ++o;
+    if (was || !moved[i]) {
+      outside.push_back(static_cast<std::uint32_t>(i));
+      out.values[i] = nan;
+    }
+  }
+  out.outside = std::move(outside);
+  std::erase_if(out.undefined, [&](std::uint32_t i) { return !moved[i]; });
+  return out;
+}
+
+}  // namespace ugs::geo
