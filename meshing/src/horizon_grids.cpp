@@ -93,7 +93,7 @@ void check_zmap_layout(const std::string& path) {
         while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
       }
       if (tokens != static_cast<std::size_t>(want))
-        throw InputError(at(), fmt::format("{} values where column {} of {} expects {} (the header's {} values per line, "
+        throw InputError(at(), fmt::format("{} value(s) where column {} of {} expects {} (the header's {} values per line, "
                                            "{} rows x {} columns disagree with the values)",
                                            tokens, c + 1, cols, want, per_line, rows, cols));
       if (line.size() != static_cast<std::size_t>(want * width))
