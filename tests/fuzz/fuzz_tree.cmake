@@ -39,7 +39,7 @@ target_include_directories(ugs_fuzz_ensemble PUBLIC ${PROJECT_SOURCE_DIR}/analys
 target_link_libraries(ugs_fuzz_ensemble PUBLIC ugs_fuzz_readers ugs_formats PRIVATE OT)
 
 set(_ugs_fuzz_targets "")
-foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params)
+foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params horizon_grid tsurf zmap)
   add_executable(fuzz_${name} ${CMAKE_CURRENT_LIST_DIR}/targets/fuzz_${name}.cpp)
   target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_${name} PRIVATE ugs_fuzz_readers ugs_formats)
