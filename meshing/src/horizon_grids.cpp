@@ -4,6 +4,8 @@
 #include "ugs/meshing/horizon_grids.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <string_view>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -100,6 +102,28 @@ void check_zmap_layout(const std::string& path) {
         throw InputError(at(), fmt::format("the line is {} characters long, {} fields of {} make {} (ZMAP+ values are "
                                            "fixed-width fields; no spaces at the end of a line)",
                                            line.size(), want, width, want * width));
+      // GDAL reads a field's leading number and ignores the rest ("-21\xff\xff00" is -21), and takes
+      // a field without a decimal point as implied decimals: both would be elevations nobody wrote.
+      for (long long k = 0; k < want; ++k) {
+        std::string_view fld = std::string_view(line).substr(static_cast<std::size_t>(k * width),
+                                                             static_cast<std::size_t>(width));
+        while (!fld.empty() && (fld.front() == ' ' || fld.front() == '\t')) fld.remove_prefix(1);
+        while (!fld.empty() && (fld.back() == ' ' || fld.back() == '\t')) fld.remove_suffix(1);
+        std::string_view num = fld.starts_with("+") ? fld.substr(1) : fld;
+        double v = 0;
+        const auto r = std::from_chars(num.data(), num.data() + num.size(), v);
+        if (num.empty() || r.ec != std::errc() || r.ptr != num.data() + num.size() || !std::isfinite(v) ||
+            fld.find('.') == std::string_view::npos) {
+          std::string shown;
+          for (char ch : fld.substr(0, 40)) {
+            const auto u = static_cast<unsigned char>(ch);
+            shown += u >= 0x20 && u < 0x7f ? std::string(1, ch) : fmt::format("\\x{:02x}", u);
+          }
+          throw InputError(at(), fmt::format("field {} '{}' is not a finite number with a decimal point (ZMAP+ fields "
+                                             "of {} characters; GDAL would read a part of it, or implied decimals)",
+                                             k + 1, shown, width));
+        }
+      }
       left -= want;
     }
   while (next())

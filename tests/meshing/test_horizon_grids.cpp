@@ -227,6 +227,18 @@ TEST(HorizonGrids, ZmapWhoseHeaderDisagreesWithItsValuesIsRefusedNamingTheLine) 
                 .find(fmt::format("more.zmap:{}: values after the last of the header's 41 columns of 31 rows",
                                   more.size())),
             std::string::npos);
+  // A damaged field keeps its width: GDAL alone would read its leading digits (-21 for -2194.5).
+  auto damaged = lines;
+  damaged[6].replace(3, 10, "     -21\xff\xff");
+  EXPECT_NE(input_error_of([&] { geo::read_zmap_grid(write("damaged.zmap", damaged)); })
+                .find("damaged.zmap:7: field 1 '-21\\xff\\xff")
+                ,
+            std::string::npos);
+  auto nodot = lines;
+  nodot[7].replace(0, 24, std::string(20, ' ') + "-999");
+  EXPECT_NE(input_error_of([&] { geo::read_zmap_grid(write("nodot.zmap", nodot)); })
+                .find("nodot.zmap:8: field 1 '-999' is not a finite number with a decimal point"),
+            std::string::npos);
   auto rows = lines;
   rows[3] = "32" + rows[3].substr(2);  // 32 rows in the header, 31 in each column
   EXPECT_NE(input_error_of([&] { geo::read_zmap_grid(write("rows.zmap", rows)); }).find("rows.zmap:13: 1 value(s) where column 1 of 41 expects 2"),

@@ -6,6 +6,7 @@ about a second, so that a few hundred mutated runs fit in the test's time budget
 """
 
 import json
+import math
 import os
 import shutil
 
@@ -196,6 +197,7 @@ def write_inputs(d):
         fh.write(STRATA)
     with open(os.path.join(d, "ensemble.toml"), "w") as fh:
         fh.write(ENSEMBLE)
+    write_horizons(d)
     with open(os.path.join(d, "pressure_pool_x.csv"), "w") as fh:
         fh.write("date,p_norm,p_MPa\n")
         p = [15.0, 14.6, 14.2, 13.8, 13.5, 13.3, 13.2, 13.4, 13.8, 14.2, 14.5, 14.7, 14.8]
@@ -218,6 +220,113 @@ def write_inputs(d):
             e, n, _ = to_laea.TransformPoint(X0 + 2000 + 1500 * i, Y0 + 4000 + 500 * i)
             vals = ",".join(f"{-0.5 * k * (1 + 0.1 * i):.2f}" for k in range(len(dates)))
             fh.write(f"P{i},{e:.2f},{n:.2f},50.0,{vals}\n")
+
+
+# ---- horizons as modelling packages export them (issue 40): ugs-meshgen's grid surfaces ----------
+STRATA_GRIDS = """# mutation-test stratigraphy with horizon grids (tests/mutation/fixtures.py)
+crs = "EPSG:32632"
+
+[[surface]]
+name = "top"
+constant = 50.0
+
+[[surface]]
+name = "reservoir top"
+grid = "res_top.irap"
+
+[[surface]]
+name = "reservoir base"
+grid = "res_base.ts"
+
+[[surface]]
+name = "deep"
+grid = "deep.zmap"
+
+[[surface]]
+name = "bottom"
+grid = "bottom.cps"
+crs = "EPSG:32632"
+
+[[unit]]
+name = "cover"
+layers = 1
+
+[[unit]]
+name = "reservoir"
+layers = 1
+
+[[unit]]
+name = "under"
+layers = 1
+
+[[unit]]
+name = "base"
+layers = 1
+
+[[material]]
+name = "rock"
+units = ["cover", "reservoir", "under", "base"]
+"""
+
+
+def _res_top(x, y):
+    return -1400.0 + 0.004 * (x - X0) - 0.002 * (y - Y0) + 15.0 * math.sin((x - X0) / 1500.0)
+
+
+def write_horizons(d):
+    """The horizons of STRATA_GRIDS: an IRAP grid turned by 10 degrees, a TSurf, a ZMAP+ and a CPS-3
+    grid, each covering the 10 km square of the chain."""
+    # IRAP: 16 x 16 nodes at 1 km, origin 2.5 km south-west of the square, turned 10 degrees.
+    a = math.radians(10.0)
+    nx = ny = 16
+    ox, oy = X0 - 2500.0, Y0 - 2500.0
+    vals = []
+    for j in range(ny):
+        for i in range(nx):
+            x = ox + math.cos(a) * 1000.0 * i - math.sin(a) * 1000.0 * j
+            y = oy + math.sin(a) * 1000.0 * i + math.cos(a) * 1000.0 * j
+            vals.append(_res_top(x, y))
+    with open(os.path.join(d, "res_top.irap"), "w") as fh:
+        fh.write(f"-996 {ny} 1000.000000 1000.000000\n{ox:.6f} {ox + 15000:.6f} {oy:.6f} {oy + 15000:.6f}\n"
+                 f"{nx} 10.000000 {ox:.6f} {oy:.6f}\n0  0  0  0  0  0  0\n")
+        for k in range(0, len(vals), 6):
+            fh.write(" ".join(f"{v:.4f}" for v in vals[k:k + 6]) + "\n")
+    # TSurf: 11 x 11 nodes at 1 km on the square, 100 m below the reservoir top, as depth.
+    n = 11
+    lines = ["GOCAD TSurf 1", "HEADER {", "name:reservoir_base", "}", "GOCAD_ORIGINAL_COORDINATE_SYSTEM",
+             "NAME Default", 'AXIS_NAME "X" "Y" "Z"', 'AXIS_UNIT "m" "m" "m"', "ZPOSITIVE Depth",
+             "END_ORIGINAL_COORDINATE_SYSTEM", "TFACE"]
+    for j in range(n):
+        for i in range(n):
+            x, y = X0 + 1000.0 * i, Y0 + 1000.0 * j
+            lines.append(f"VRTX {j * n + i + 1} {x:.2f} {y:.2f} {-(_res_top(x, y) - 100.0):.4f}")
+    for j in range(n - 1):
+        for i in range(n - 1):
+            p = j * n + i + 1
+            lines += [f"TRGL {p} {p + 1} {p + n + 1}", f"TRGL {p} {p + n + 1} {p + n}"]
+    lines.append("END")
+    with open(os.path.join(d, "res_base.ts"), "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    # ZMAP+: 13 x 13 nodes at 1 km from 1 km south-west of the square, columns from the west, each from the north.
+    n, x0, y0 = 13, X0 - 1000.0, Y0 - 1000.0
+    out = ["! deep horizon", "@deep, GRID, 5", "     20, -99999.0, , 4, 1",
+           f"{n}, {n}, {x0:.1f}, {x0 + 12000:.1f}, {y0:.1f}, {y0 + 12000:.1f}", "0.0, 0.0, 0.0", "@"]
+    for i in range(n):
+        col = [-2200.0 + 0.003 * 1000.0 * i - 0.001 * 1000.0 * j for j in range(n - 1, -1, -1)]
+        for k in range(0, n, 5):
+            out.append("".join(f"{v:20.4f}" for v in col[k:k + 5]))
+    with open(os.path.join(d, "deep.zmap"), "w") as fh:
+        fh.write("\n".join(out) + "\n")
+    # CPS-3: the same nodes, columns from the west, each from the north.
+    vals = [-3000.0 + 2.0 * i - 1.0 * j for i in range(n) for j in range(n - 1, -1, -1)]
+    with open(os.path.join(d, "bottom.cps"), "w") as fh:
+        fh.write(f"FSASCI 0 1 COMPUTED 0 1.0000000E+30\nFSATTR 0 0\n"
+                 f"FSLIMI {x0:.4f} {x0 + 12000:.4f} {y0:.4f} {y0 + 12000:.4f} {min(vals):.4f} {max(vals):.4f}\n"
+                 f"FSNROW {n} {n}\nFSXINC 1000.0000 1000.0000\n->bottom\n")
+        for k in range(0, len(vals), 5):
+            fh.write(" ".join(f"{v:.4f}" for v in vals[k:k + 5]) + "\n")
+    with open(os.path.join(d, "strata_grids.toml"), "w") as fh:
+        fh.write(STRATA_GRIDS)
 
 
 # ---- a reservoir simulator's output (ugs-import-eclipse) ------------------------------------------
