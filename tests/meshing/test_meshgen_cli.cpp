@@ -291,7 +291,7 @@ TEST_F(MeshgenCli, BadSurfaces) {
   expect_bad(replace(s, "picks = \"top_c.csv\"", "picks = \"few.csv\""),
              {"surface 'Top C'", "do not cover", "convex hull", "x="});
   expect_bad(replace(s, "picks = \"top_c.csv\"", "picks = \"top_c.csv\"\nconstant = 3.0"),
-             {"surface 'Top C'", "exactly one of raster, constant or picks"});
+             {"surface 'Top C'", "exactly one of raster, grid, constant or picks"});
   // Two bad surfaces (sampled on different threads): the first in the file is the one reported.
   for (const auto& [first, second] : {std::pair{"Base A", "Top C"}, std::pair{"Top C", "Base C"}}) {
     std::string two = s;
