@@ -173,6 +173,10 @@ TEST(HorizonGrids, NodesAreWhereTheHeaderPutsThem) {
   ugs::test::write_zmap(d.path("n.zmap"), g);
   const auto z = sample(d.path("n.zmap"), nodes);
   for (std::size_t k = 0; k < z.size(); ++k) EXPECT_EQ(z[k], want[k]);
+  // The same file as a `raster` (GDAL's generic path, ZMAP_PIXEL_IS_POINT set by gdal_init).
+  const auto r = geo::sample_raster(d.path("n.zmap"), 1, nodes, utm());
+  ASSERT_TRUE(r.outside.empty() && r.nodata.empty());
+  for (std::size_t k = 0; k < z.size(); ++k) EXPECT_NEAR(r.values[k], want[k], 1e-9);
 }
 
 TEST(HorizonGrids, UndefinedNodesAreReportedWhereTheirCellsAre) {
