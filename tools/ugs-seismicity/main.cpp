@@ -40,9 +40,10 @@ int main(int argc, char** argv) {
                  "<stem>_pairs.h5; none)");
   std::string& output = tool.add_output("-", "Per fault and date (CSV): R/r, its maximum over pairs, rate, expected events");
   tool.name_setting("start date", "--start");
+  tool.name_setting("window", "--window");
   tool.name_setting("patch area", "--patch-area-km2");
   tool.name_setting("field output", "--field-output");
-  tool.name_setting("windows table", "--windows-csv");
+  tool.name_setting("event counts table", "--windows-csv");
   tool.name_setting("input", "inputs");
   return tool.run(argc, argv, [&] {
     s.output = output;

@@ -86,7 +86,8 @@ RunResult run(const RunSettings& s) {
   for (const auto& in : s.inputs)
     if (seen.count(fs::weakly_canonical(fs::absolute(in)).string())) throw InputError(in, "is an input and an output");
   if (windows_csv.empty() && !s.windows.empty() && s.windows_csv != "none")
-    throw InputError("windows table", "the windows' expected events have no file: give one (the table of dates goes to stdout)");
+    throw InputError("event counts table", "no file named for the expected events per forecast period (the table of dates goes to "
+                                           "stdout): name one");
 
   std::vector<std::string> comments = s.comments;
   comments.push_back(fmt::format("ugs-seismicity: Dieterich (1994) rate-and-state seismicity, Heimisson & Segall (2018) closed form, "
