@@ -439,16 +439,22 @@ SeismicityValues read_seismicity_values(const TomlTable& t, const Collect& ok) {
   SeismicityValues v;
   v.where = t.where();
   ok([&] {
-    if (t.has("A_sigma_MPa")) v.A_sigma_Pa = positive(t, "A_sigma_MPa", t.number("A_sigma_MPa")) * kMPa;
+    if (!t.has("A_sigma_MPa")) return;
+    const double a = positive(t, "A_sigma_MPa", t.number("A_sigma_MPa"));
+    if (!(a >= 1e-6 && a <= 1e3)) throw t.error("A_sigma_MPa", fmt::format("{} is outside [1e-6, 1000] MPa", a));
+    v.A_sigma_Pa = a * kMPa;
   });
   ok([&] {
-    if (t.has("stressing_rate_MPa_per_yr"))
-      v.stressing_rate_Pa_per_s = positive(t, "stressing_rate_MPa_per_yr", t.number("stressing_rate_MPa_per_yr")) * kMPa / kSecondsPerYear;
+    if (!t.has("stressing_rate_MPa_per_yr")) return;
+    const double r = positive(t, "stressing_rate_MPa_per_yr", t.number("stressing_rate_MPa_per_yr"));
+    if (!(r >= 1e-9 && r <= 1e3)) throw t.error("stressing_rate_MPa_per_yr", fmt::format("{} is outside [1e-9, 1000] MPa/yr", r));
+    v.stressing_rate_Pa_per_s = r * kMPa / kSecondsPerYear;
   });
   ok([&] {
-    if (t.has("background_rate_per_yr_km2"))
-      v.background_rate_per_s_m2 =
-          positive(t, "background_rate_per_yr_km2", t.number("background_rate_per_yr_km2")) / kSecondsPerYear / 1e6;
+    if (!t.has("background_rate_per_yr_km2")) return;
+    const double r = positive(t, "background_rate_per_yr_km2", t.number("background_rate_per_yr_km2"));
+    if (!(r <= 1e6)) throw t.error("background_rate_per_yr_km2", fmt::format("{} is above 1e6 events per year per km2", r));
+    v.background_rate_per_s_m2 = r / kSecondsPerYear / 1e6;
   });
   ok([&] {
     if (!t.has("M_c")) return;

@@ -144,6 +144,13 @@ Forecast forecast(const StressHistory& h, const std::vector<Parameters>& params,
       ff.cfs_mean[k] /= ff.area;
       ff.rate_ratio[k] /= ff.area;
     }
+    // The inputs are bounded so that every value is finite; a table never holds inf or NaN.
+    auto finite = [](const std::vector<double>& v) { return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }); };
+    bool ok = finite(ff.rate) && finite(ff.events) && finite(ff.rate_ratio_max) && finite(ff.window_events) && finite(ff.cfs_mean);
+    for (const auto& q : ff.pairs) ok = ok && finite(q.rate_ratio) && finite(q.events_per_m2);
+    if (!ok)
+      throw ComputeError(fmt::format("fault '{}': the forecast is not finite (A sigma {} MPa, s_r {} MPa/yr): a rate or count "
+                                     "beyond doubles", fh.name, p.A_sigma / 1e6, p.stressing_rate * kSecondsPerYear / 1e6));
     fc.faults.push_back(std::move(ff));
   }
   return fc;

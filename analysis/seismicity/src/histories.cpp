@@ -19,6 +19,16 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kMPa = 1e6;
+// Largest |dCFS| and pair area taken as data: beyond them a value is a corrupt number, not a stress
+// (1e6 MPa) or a share of a fault (1e6 km2), and sums of them would leave doubles.
+constexpr double kMaxCfsMPa = 1e6, kMaxAreaM2 = 1e12;
+
+double checked_cfs_MPa(const CsvTable& t, std::size_t r, std::size_t c) {
+  const double v = t.number(r, c);
+  if (!(std::abs(v) <= kMaxCfsMPa))
+    throw InputError(t.where(r), fmt::format("column '{}': {} MPa (expected a Coulomb stress change within +-1e6 MPa)", t.columns()[c], v));
+  return v;
+}
 
 std::string date_text(std::int64_t t) { return format_iso_date(t); }
 
@@ -101,7 +111,8 @@ StressHistory read_pair_csvs(const std::vector<std::string>& paths) {
       p.along_strike = t.number(r, c_s);
       p.down_dip = t.number(r, c_d);
       p.area = t.number(r, c_area);
-      if (p.area < 0) throw InputError(t.where(r), fmt::format("area_m2 = {} (expected a share of the fault >= 0)", p.area));
+      if (!(p.area >= 0 && p.area <= kMaxAreaM2))
+        throw InputError(t.where(r), fmt::format("area_m2 = {} (expected a share of the fault in [0, 1e12] m2)", p.area));
       if (c_interp) {
         const std::int64_t i = t.integer(r, *c_interp);
         if (i != 0 && i != 1) throw InputError(t.where(r), fmt::format("interpolated = {} (expected 0 or 1)", i));
@@ -119,7 +130,7 @@ StressHistory read_pair_csvs(const std::vector<std::string>& paths) {
         if (static_cast<std::uint64_t>(t.integer(r, c_node)) != fh.pairs[q].node)
           throw InputError(t.where(r), fmt::format("node {} where {} has node {} (expected the same pairs at every date, in the "
                                                    "same order)", t.text(r, c_node), date_text(dates[0]), fh.pairs[q].node));
-        fh.pairs[q].dcfs[k] = t.number(r, c_cfs) * kMPa;
+        fh.pairs[q].dcfs[k] = checked_cfs_MPa(t, r, c_cfs) * kMPa;
       }
     }
     if (h.dates.empty()) {
@@ -230,8 +241,9 @@ StressHistory read_faults_h5(const std::string& path, const std::string& mesh_pa
     for (auto& f : h.faults)
       for (auto& p : f.pairs) {
         const double v = cfs.values[p.surface_node];
-        if (!std::isfinite(v))
-          throw InputError(path, fmt::format("cfs_change at {}, node {}: {} (expected a finite number)", steps[k].date, p.node, v));
+        if (!(std::abs(v) <= kMaxCfsMPa * kMPa))
+          throw InputError(path, fmt::format("cfs_change at {}, node {}: {} Pa (expected a finite Coulomb stress change within "
+                                             "+-1e6 MPa)", steps[k].date, p.node, v));
         p.dcfs[k] = v;
       }
   }
@@ -248,8 +260,8 @@ StressHistory read_faults_h5(const std::string& path, const std::string& mesh_pa
 }
 
 StressHistory read_dcfs_csv(const std::string& path, const std::string& name, double area_m2) {
-  if (!(area_m2 > 0) || !std::isfinite(area_m2))
-    throw InputError("patch area", fmt::format("{} km2 (expected a positive area)", area_m2 / 1e6));
+  if (!(area_m2 > 0 && area_m2 <= kMaxAreaM2))
+    throw InputError("patch area", fmt::format("{} km2 (expected a positive area up to 1e6 km2)", area_m2 / 1e6));
   const CsvTable t = CsvTable::read(path);
   const std::size_t c_date = t.column("date"), c_cfs = t.column("dcfs_MPa");
   StressHistory h;
@@ -264,7 +276,7 @@ StressHistory read_dcfs_csv(const std::string& path, const std::string& name, do
       throw InputError(t.where(r), fmt::format("date {} does not follow {} (expected dates strictly increasing)", date_text(d),
                                                date_text(h.dates.back())));
     h.dates.push_back(d);
-    f.pairs[0].dcfs.push_back(t.number(r, c_cfs) * kMPa);
+    f.pairs[0].dcfs.push_back(checked_cfs_MPa(t, r, c_cfs) * kMPa);
   }
   require_two_dates(h.dates, path);
   h.faults.push_back(std::move(f));

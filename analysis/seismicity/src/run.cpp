@@ -33,8 +33,6 @@ StressHistory read_inputs(const RunSettings& s, std::string& kind) {
     throw InputError(s.inputs[1], fmt::format("a second {} input (expected one)", kind == "h5" ? "faults HDF5" : "date,dcfs_MPa"));
   if (kind == "pairs") return read_pair_csvs(s.inputs);
   if (kind == "h5") return read_faults_h5(s.inputs[0], s.mesh);
-  if (!(s.patch_area_km2 > 0) || !std::isfinite(s.patch_area_km2))
-    throw InputError("patch area", fmt::format("{} km2 (expected a positive area)", s.patch_area_km2));
   return read_dcfs_csv(s.inputs[0], s.patch_name, s.patch_area_km2 * 1e6);
 }
 
