@@ -133,7 +133,10 @@ TEST(SeismicityCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
 
 // A faulted ugs-solve run over a monthly storage cycle (contact_make_case --months 12): the forecast
 // from the per-pair CSV and from the faults HDF5 agree pair by pair; the HDF5 node field R_over_r is
-// the per-pair table's; the fault's rate is r times the area-weighted sum of the pairs.
+// the per-pair table's; the fault's rate is r times the area-weighted sum of the pairs. ugs-report
+// --seismicity draws the R/r series and the event density map (its data: the per-pair table's
+// cumulative density at the window's end minus at its start) and puts the windows' counts in the
+// headlines.
 TEST(SeismicityCli, SolvedFaultFromCsvAndHdf5) {
   Dir d("seis-solve");
   auto mk = test::run(std::string(UGS_BINARY_DIR) + "/tests/fault_mechanics/contact_make_case " + d.path.string() +
@@ -189,4 +192,28 @@ TEST(SeismicityCli, SolvedFaultFromCsvAndHdf5) {
       if (pc.text(i, 0) == f.text(k, 0)) sum += pc.number(i, pc.column("area_m2")) * pc.number(i, pc.column("R_over_r"));
     EXPECT_LT(rel(f.number(k, f.column("rate_per_yr")), 0.2 * sum / 1e6), 1e-12) << f.text(k, 0);
   }
+  // ugs-report: pictures, the density map's data and the headline of all faults at M_c.
+  const auto rep = test::run(test::tool("ugs-report") + " --results " + d / "out.h5" + " --mesh " + d / "faulted.msh" + " --case " +
+                             d / "case.toml" + " --seismicity " + d / "csv.csv" + " --width 600 --height 400 --keep-work -q -o " +
+                             d / "report");
+  ASSERT_EQ(rep.exit_code, 0) << rep.err;
+  EXPECT_TRUE(fs::exists(d / "report/seismicity_rate_series.png"));
+  EXPECT_TRUE(fs::exists(d / "report/seismicity_density.png"));
+  std::map<std::string, double> at_a, at_b;
+  for (std::size_t i = 0; i < pc.rows(); ++i) {
+    const std::string node(pc.text(i, pc.column("node")));
+    if (pc.text(i, 0) == "2000-02-01") at_a[node] = pc.number(i, pc.column("events_per_km2_from_start"));
+    if (pc.text(i, 0) == "2000-12-01") at_b[node] = pc.number(i, pc.column("events_per_km2_from_start"));
+  }
+  const CsvTable dens = CsvTable::read(d / "report/work/seismicity_density.csv");
+  ASSERT_EQ(dens.rows(), at_b.size());
+  for (std::size_t i = 0; i < dens.rows(); ++i) {
+    const std::string node(dens.text(i, dens.column("node")));
+    EXPECT_EQ(dens.number(i, dens.column("events_per_km2")), at_b.at(node) - at_a.at(node)) << node;
+  }
+  const CsvTable w = CsvTable::read(d / "csv_windows.csv");
+  const double n_all = w.number(w.rows() - 3, w.column("expected_events"));  // "all" at M_c = 1.5
+  ASSERT_EQ(w.text(w.rows() - 3, w.column("fault")), "all");
+  EXPECT_NE(test::slurp(d / "report/summary.md").find(fmt::format("expected events M ≥ 1.5, all faults | {:.3g} (P(at least one)", n_all)),
+            std::string::npos);
 }
