@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   tool.name_setting("field output", "--field-output");
   tool.name_setting("event counts table", "--windows-csv");
   tool.name_setting("input", "inputs");
+  tool.name_setting("mesh of the run", "--mesh");
   return tool.run(argc, argv, [&] {
     s.output = output;
     s.comments = {tool.command_line()};

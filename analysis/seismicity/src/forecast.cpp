@@ -16,8 +16,14 @@ namespace {
 
 std::string fault_list(const StressHistory& h) {
   std::string s;
-  for (const auto& f : h.faults) s += (s.empty() ? "" : ", ") + f.name;
-  return s;
+  bool unnamed = false;
+  for (const auto& f : h.faults) {
+    s += (s.empty() ? "" : ", ") + f.name;
+    unnamed = unnamed || (f.name.rfind("fault ", 0) == 0 && !f.pairs.empty() && f.source.size() > 3 &&
+                          f.source.compare(f.source.size() - 3, 3, ".h5") == 0);
+  }
+  // A faults HDF5 holds tags, not names: the mesh of the run names them.
+  return unnamed ? s + "; a faults HDF5 names its faults only with the mesh of the run" : s;
 }
 
 // Largest log(R / r) a table may hold: R / r and the rate times the area stay well inside doubles.
