@@ -79,9 +79,13 @@ void window_headlines(Context& c, const CsvTable& t, std::string& first_window) 
 }
 
 void density_map(Context& c, const CsvTable& t, const std::string& window) {
-  const auto slash = window.find('/');
-  const auto a = parse_iso_date(window.substr(0, slash)), b = slash == std::string::npos ? std::nullopt : parse_iso_date(window.substr(slash + 1));
-  if (!a || !b || !(*b > *a)) throw InputError("seismicity window", fmt::format("'{}' is not START/END with START before END", window));
+  const auto slash = std::min(window.find('/'), window.size());
+  const auto start = parse_iso_date(window.substr(0, slash));
+  const auto end = parse_iso_date(window.substr(std::min(slash + 1, window.size())));
+  if (slash == window.size() || !start || !end || !(*end > *start))
+    throw InputError("seismicity window", fmt::format("'{}' is not START/END with START before END", window));
+  const std::int64_t a = start.value_or(0), b = end.value_or(0);
+  const std::string from = format_iso_date(a), to = format_iso_date(b);
   const auto cd = t.column("date"), cf = t.column("fault"), cn = t.column("node"), cx = t.column("x_m"), cy = t.column("y_m");
   const auto cz = t.column("z_m"), cs = t.column("along_strike_m"), ce = t.column("events_per_km2_from_start");
   struct Plane {
@@ -95,7 +99,7 @@ void density_map(Context& c, const CsvTable& t, const std::string& window) {
   bool found_a = false, found_b = false;
   for (std::size_t r = 0; r < t.rows(); ++r) {
     const std::int64_t d = t.date(r, cd);
-    if (d != *a && d != *b) continue;
+    if (d != a && d != b) continue;
     const std::string fault(t.text(r, cf)), node(t.text(r, cn));
     auto [pit, fresh] = plane_of.try_emplace(fault, planes.size());
     if (fresh) planes.push_back({fault, {}, {}, {}, {}, {}, {}, {}, {}, {}});
@@ -106,9 +110,9 @@ void density_map(Context& c, const CsvTable& t, const std::string& window) {
       p.at_a.push_back(0), p.at_b.push_back(0), p.have_a.push_back(0), p.have_b.push_back(0);
     }
     const std::size_t q = nit->second;
-    (d == *a ? p.at_a : p.at_b)[q] = t.number(r, ce);
-    (d == *a ? p.have_a : p.have_b)[q] = 1;
-    (d == *a ? found_a : found_b) = true;
+    (d == a ? p.at_a : p.at_b)[q] = t.number(r, ce);
+    (d == a ? p.have_a : p.have_b)[q] = 1;
+    (d == a ? found_a : found_b) = true;
   }
   if (!found_a || !found_b) {
     c.notes.push_back(fmt::format("{}: the window {} does not start and end on dates of the per-pair table: no event density map",
@@ -152,10 +156,10 @@ void density_map(Context& c, const CsvTable& t, const std::string& window) {
   Figure f;
   f.kind = "faults";
   f.png = "seismicity_density.png";
-  f.title = fmt::format("Expected events ≥ M_c per km², {} to {}", format_iso_date(*a), format_iso_date(*b));
+  f.title = fmt::format("Expected events ≥ M_c per km², {} to {}", from, to);
   f.caption = fmt::format("The expected number of events of magnitude M_c and above per km² of fault over {} to {} (rate-and-state "
                           "forecast, docs/seismicity.md), on each fault in its own plane (distance along strike and elevation; "
-                          "linear between the node pairs{}); work/seismicity_density.csv.", format_iso_date(*a), format_iso_date(*b),
+                          "linear between the node pairs{}); work/seismicity_density.csv.", from, to,
                           pools.empty() ? "" : "; the pools' outline projected on the fault's plane");
   f.json = fmt::format("\"panels\": [{}], \"vmax\": {}, \"label\": {}", panels, std::max(vmax, 1e-12),
                        jstr("expected events ≥ M_c per km²"));
