@@ -434,6 +434,79 @@ void read_scenario(const TomlTable& root, CaseFile& c, const Collect& ok) {
   });
 }
 
+// The values of [seismicity] or of one [seismicity.fault.<name>]: each checked where given.
+SeismicityValues read_seismicity_values(const TomlTable& t, const Collect& ok) {
+  SeismicityValues v;
+  v.where = t.where();
+  ok([&] {
+    if (!t.has("A_sigma_MPa")) return;
+    const double a = positive(t, "A_sigma_MPa", t.number("A_sigma_MPa"));
+    if (!(a >= 1e-6 && a <= 1e3)) throw t.error("A_sigma_MPa", fmt::format("{} is outside [1e-6, 1000] MPa", a));
+    v.A_sigma_Pa = a * kMPa;
+  });
+  ok([&] {
+    if (!t.has("stressing_rate_MPa_per_yr")) return;
+    const double r = positive(t, "stressing_rate_MPa_per_yr", t.number("stressing_rate_MPa_per_yr"));
+    if (!(r >= 1e-9 && r <= 1e3)) throw t.error("stressing_rate_MPa_per_yr", fmt::format("{} is outside [1e-9, 1000] MPa/yr", r));
+    v.stressing_rate_Pa_per_s = r * kMPa / kSecondsPerYear;
+  });
+  ok([&] {
+    if (!t.has("background_rate_per_yr_km2")) return;
+    const double r = positive(t, "background_rate_per_yr_km2", t.number("background_rate_per_yr_km2"));
+    if (!(r <= 1e6)) throw t.error("background_rate_per_yr_km2", fmt::format("{} is above 1e6 events per year per km2", r));
+    v.background_rate_per_s_m2 = r / kSecondsPerYear / 1e6;
+  });
+  ok([&] {
+    if (!t.has("M_c")) return;
+    const double m = t.number("M_c");
+    if (!(m >= -3 && m <= 10)) throw t.error("M_c", fmt::format("{} is outside [-3, 10] (a magnitude)", m));
+    v.M_c = m;
+  });
+  ok([&] {
+    if (!t.has("b_value")) return;
+    const double b = t.number("b_value");
+    if (!(b > 0 && b <= 5)) throw t.error("b_value", fmt::format("{} is outside (0, 5] (Gutenberg-Richter b, about 1)", b));
+    v.b_value = b;
+  });
+  return v;
+}
+
+void read_seismicity(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> s;
+  ok([&] { s = root.table_opt("seismicity"); });
+  if (!s) return;
+  static const std::set<std::string> value_keys{"A_sigma_MPa", "stressing_rate_MPa_per_yr", "background_rate_per_yr_km2", "M_c",
+                                                "b_value"};
+  std::set<std::string> keys = value_keys;
+  keys.insert({"magnitudes", "fault"});
+  s->reject_unknown(keys, ok.errors);
+  SeismicitySpec spec;
+  spec.values = read_seismicity_values(*s, ok);
+  for (const char* key : {"A_sigma_MPa", "stressing_rate_MPa_per_yr", "background_rate_per_yr_km2", "M_c"})
+    if (!s->has(key))
+      ok([&] { throw InputError(s->where(), fmt::format("'seismicity.{}' is required in [seismicity] (docs/seismicity.md)", key)); });
+  if (!spec.values.b_value && !s->has("b_value")) spec.values.b_value = 1.0;
+  ok([&] {
+    if (!s->has("magnitudes")) return;
+    for (double m : s->numbers("magnitudes"))
+      if (!(m >= -3 && m <= 10)) throw s->error("magnitudes", fmt::format("{} is outside [-3, 10] (a magnitude)", m));
+    spec.magnitudes = s->numbers("magnitudes");
+  });
+  std::optional<TomlTable> faults;
+  ok([&] {
+    if (s->has("fault")) faults = s->table("fault");
+  });
+  if (faults)
+    for (const auto& name : faults->keys()) {
+      std::optional<TomlTable> f;
+      ok([&] { f = faults->table(name); });
+      if (!f) continue;
+      f->reject_unknown(value_keys, ok.errors);
+      spec.faults[name] = read_seismicity_values(*f, ok);
+    }
+  c.seismicity = std::move(spec);
+}
+
 void read_output(const TomlTable& root, CaseFile& c, const Collect& ok) {
   std::optional<TomlTable> o;
   ok([&] { o = root.table_opt("output"); });
@@ -463,7 +536,7 @@ CaseFile read_case_file(const std::string& path, ErrorList& errors) {
   const TomlTable root = TomlTable::parse_file(path);  // (a file that cannot be read or parsed stops here)
   const Collect ok{errors};
   root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "boundary_traction", "fault",
-                       "solver", "output", "scenario"},
+                       "solver", "output", "scenario", "seismicity"},
                       errors);
   CaseFile c;
   c.path = path;
@@ -475,6 +548,7 @@ CaseFile read_case_file(const std::string& path, ErrorList& errors) {
   read_solver(root, c, ok);
   read_scenario(root, c, ok);
   read_output(root, c, ok);
+  read_seismicity(root, c, ok);
   return c;
 }
 

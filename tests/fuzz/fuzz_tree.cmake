@@ -38,8 +38,14 @@ add_library(ugs_fuzz_ensemble STATIC ${_e}/spec.cpp ${_e}/design.cpp ${_e}/morri
 target_include_directories(ugs_fuzz_ensemble PUBLIC ${PROJECT_SOURCE_DIR}/analysis/ensemble/include)
 target_link_libraries(ugs_fuzz_ensemble PUBLIC ugs_fuzz_readers ugs_formats PRIVATE OT)
 
+# The seismicity readers and model (analysis/seismicity; its HDF5 reader needs ugs_fields_serial).
+set(_s ${PROJECT_SOURCE_DIR}/analysis/seismicity/src)
+add_library(ugs_fuzz_seismicity STATIC ${_s}/histories.cpp ${_s}/forecast.cpp ${_s}/rate_state.cpp)
+target_include_directories(ugs_fuzz_seismicity PUBLIC ${PROJECT_SOURCE_DIR}/analysis/seismicity/include)
+target_link_libraries(ugs_fuzz_seismicity PUBLIC ugs_formats ugs_fields_serial)
+
 set(_ugs_fuzz_targets "")
-foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params horizon_grid tsurf zmap)
+foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params horizon_grid tsurf zmap seismicity)
   add_executable(fuzz_${name} ${CMAKE_CURRENT_LIST_DIR}/targets/fuzz_${name}.cpp)
   target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_${name} PRIVATE ugs_fuzz_readers ugs_formats)
@@ -47,4 +53,5 @@ foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec 
 endforeach()
 target_link_libraries(fuzz_hdf5_fields PRIVATE ugs_fields_serial)
 target_link_libraries(fuzz_ensemble_spec PRIVATE ugs_fuzz_ensemble)
+target_link_libraries(fuzz_seismicity PRIVATE ugs_fuzz_seismicity)
 add_custom_target(ugs_fuzz_targets DEPENDS ${_ugs_fuzz_targets})

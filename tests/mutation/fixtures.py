@@ -204,6 +204,21 @@ def write_inputs(d):
         for m, v in enumerate(p):
             y, mo = 1950 + (m // 12), m % 12 + 1
             fh.write(f"{y:04d}-{mo:02d}-01,{v / 15.0:.5f},{v:.4f}\n")
+    # ugs-seismicity: a per-pair CSV of fault F as ugs-solve writes it (3 pairs, 4 monthly dates), a
+    # one-patch dCFS table, and a case with the [seismicity] section.
+    with open(os.path.join(d, "pairs_fault_F.csv"), "w") as fh:
+        fh.write("# ugs-solve fault F: one row per node pair and output date; units m, MPa, mm; tension positive\n")
+        fh.write("date,node,x_m,y_m,z_m,along_strike_m,down_dip_m,area_m2,state,tau_MPa,sigma_n_eff_MPa,chi,slip_mm,"
+                 "opening_mm,cfs_change_MPa,p_fault_MPa,interpolated\n")
+        for m in range(4):
+            for q in range(3):
+                fh.write(f"1950-{m + 1:02d}-01,{101 + q},{X0 + 100 * q},{Y0 + 5000},-1000,{100 * q},0,{5000 + 1000 * q},stick,"
+                         f"1.5,-20,0.1,0,0,{0.01 * m * (q - 1):.3f},10,{1 if q == 2 else 0}\n")
+    with open(os.path.join(d, "dcfs.csv"), "w") as fh:
+        fh.write("date,dcfs_MPa\n1950-01-01,0\n1950-07-01,0.05\n1951-01-01,-0.02\n")
+    with open(os.path.join(d, "seismicity.toml"), "w") as fh:
+        fh.write("[[fault]]\nname = \"F\"\n\n[seismicity]\nA_sigma_MPa = 0.05\nstressing_rate_MPa_per_yr = 1e-3\n"
+                 "background_rate_per_yr_km2 = 0.2\nM_c = 1.5\nmagnitudes = [2.0, 3.0]\n\n[seismicity.fault.F]\nb_value = 0.9\n")
     # Measured vertical series in the EGMS layout (EPSG:3035), monthly in the second half of 1950,
     # at the PS points.
     from osgeo import osr

@@ -93,6 +93,12 @@ def tool_specs():
                           "run --spec {IN}/ensemble.toml --case {IN}/case.toml --mesh {IN}/model.msh --measured {IN}/measured.csv "
                           "--inside {IN}/traces.geojson --phase p=1950-03-01/1950-09-01 --emit make --cache-dir {OUT}/members.cache "
                           "-q -o {OUT}/members.mk --solver-command " + shlex.quote(solve_cmd)),
+        "seismicity": (0.5, ["pairs_fault_F.csv", "seismicity.toml"],
+                       "{IN}/pairs_fault_F.csv --case {IN}/seismicity.toml --start 1950-02-01 --window 1950-02-01/1950-04-01 "
+                       "-q -o {OUT}/forecast.csv"),
+        "seismicity:patch": (0.3, ["dcfs.csv", "seismicity.toml"],
+                             "{IN}/dcfs.csv --case {IN}/seismicity.toml --patch-name F --window 1950-03-01/1950-12-01 -q "
+                             "-o {OUT}/patch.csv"),
         "import-eclipse": (0.7, ["TINY.EGRID", "TINY.UNRST", "deck_mesh.msh"],
                            "{IN}/TINY.EGRID --restart {IN}/TINY.UNRST --mesh {IN}/deck_mesh.msh -q -o {OUT}/dp.h5"),
         "report": (0.35, ["solve.h5", "solve_top.h5", "model.msh", "case.toml", "traces.geojson"],

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "ugs/cli/tool.hpp"
+#include "ugs/formats/case_file.hpp"
 #include "ugs/ensemble/collect.hpp"
 #include "ugs/ensemble/members.hpp"
 #include "ugs/ensemble/spec.hpp"
@@ -38,7 +39,7 @@ struct Options {
   Mode mode = Mode::run;
   Emit emit = Emit::none;
   std::string spec, case_file, solver_command, mesh, cache_dir, output;
-  std::vector<std::string> phases;
+  std::vector<std::string> phases, seismic_windows;
   std::string inside, inside_where, measured, measured_east, points_crs, crs, id_column, window, field;
   double east_weight = 1.0;
   int jobs = 1;
@@ -63,6 +64,7 @@ std::string command_for(const Options& o, const std::string& mode) {
   add("--mesh", o.mesh, true);
   add("--cache-dir", o.cache_dir, true);
   for (const auto& p : o.phases) add("--phase", p, false);
+  for (const auto& w : o.seismic_windows) add("--seismic-window", w, false);
   add("--inside", o.inside, true);
   add("--inside-where", o.inside_where, false);
   add("--measured", o.measured, true);
@@ -79,6 +81,15 @@ std::string command_for(const Options& o, const std::string& mode) {
 MetricOptions metric_options(const Options& o) {
   MetricOptions m;
   for (const auto& p : o.phases) m.phases.push_back(parse_phase(p));
+  for (const auto& w : o.seismic_windows) {
+    try {
+      m.seismic_windows.push_back(parse_phase(w));
+    } catch (const InputError& e) {
+      throw InputError("--seismic-window " + w, "expected NAME=START/END (ISO dates, START before END), e.g. forecast=2025-01-01/2033-01-01");
+    }
+  }
+  if (!m.seismic_windows.empty() && !read_case_file(o.case_file).seismicity)
+    throw InputError(o.case_file, "has no [seismicity] section, which --seismic-window needs (docs/seismicity.md)");
   m.window = insar::parse_window(o.window, "--window");
   m.field = o.field;
   const std::string crs = insar::model_crs(o.crs, o.case_file);
@@ -186,6 +197,9 @@ int main(int argc, char** argv) {
   app.add_option("--emit", emit, "Write the members as a Makefile (make) or Slurm array script (slurm) to -o instead of running")
       ->check(CLI::IsMember({"make", "slurm"}));
   app.add_option("--phase", o.phases, "NAME=START/END: uplift and settlement over this phase (repeat; default: the whole run)");
+  app.add_option("--seismic-window", o.seismic_windows,
+                 "NAME=START/END: expected events and P(event >= M) per fault over this window (repeat; needs [seismicity] in "
+                 "the case and the members' per-pair fault CSVs)");
   app.add_option("--inside", o.inside, "Surface metrics only inside these polygons (any OGR file, e.g. the reservoir trace)");
   app.add_option("--inside-where", o.inside_where, "OGR attribute filter on the --inside polygons");
   app.add_option("--measured", o.measured, "PS points (EGMS CSV, CSV or OGR): metrics at them, and the InSAR misfit if they have series");

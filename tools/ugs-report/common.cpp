@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -91,6 +92,31 @@ std::vector<double> cell_field_at(const FieldSeriesReader& r, const std::vector<
   const Field c = r.cell_field(b->i1, name);
   for (std::size_t i = 0; i < a.values.size(); ++i) a.values[i] = (1 - b->w) * a.values[i] + b->w * c.values[i];
   return std::move(a.values);
+}
+
+// The fault's strike in the horizontal plane from its pairs' along_strike (= x sx + y sy - s0,
+// docs/fault-mechanics.md): least squares, or along the pairs' line when they stand on one in plan
+// (a vertical fault). For the pools' outlines on the fault's plane.
+std::array<double, 3> strike_of(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& s) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0, ms = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n, ms += s[i] / n;
+  double xx = 0, xy = 0, yy = 0, xs = 0, ys = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double dx = x[i] - mx, dy = y[i] - my, ds = s[i] - ms;
+    xx += dx * dx, xy += dx * dy, yy += dy * dy, xs += dx * ds, ys += dy * ds;
+  }
+  const double det = xx * yy - xy * xy;
+  double sx = 1, sy = 0;
+  if (det > 1e-9 * (xx + yy) * (xx + yy)) {
+    sx = (yy * xs - xy * ys) / det, sy = (xx * ys - xy * xs) / det;
+  } else if (xx + yy > 0) {
+    std::tie(sx, sy) = xx >= yy ? std::pair{xx, xy} : std::pair{xy, yy};
+    if (sx * xs + sy * ys < 0) sx = -sx, sy = -sy;
+  }
+  const double h = std::hypot(sx, sy);
+  sx /= h, sy /= h;
+  return {sx, sy, mx * sx + my * sy - ms};
 }
 
 }  // namespace ugs::report

@@ -123,6 +123,10 @@ int main(int argc, char** argv) {
   app.add_option("--calibration", o.calibration, "An ugs-calibrate output folder: its misfit profile and best values");
   app.add_option("--ensemble", o.ensemble, "An ugs-ensemble output folder: tornado chart, fan charts of the PS series, chi exceedance")
       ->check(CLI::ExistingDirectory);
+  app.add_option("--seismicity", o.seismicity,
+                 "ugs-seismicity's per fault and date table (its _windows.csv and _pairs.csv beside it): R/r series, event "
+                 "density map, expected events and P(M >= m) as headlines");
+  app.add_option("--seismicity-window", o.seismicity_window, "START/END of the event density map (default: the first window)");
   app.add_option("--discussion", o.discussion,
                  "Markdown file: why this case's numbers differ from the thesis' (a section of the summary)")
       ->check(CLI::ExistingFile);
@@ -137,6 +141,7 @@ int main(int argc, char** argv) {
   tool.name_setting("raster cell size", "--raster-cell");
   tool.name_setting("mesh of the top surface", "--mesh");
   tool.name_setting("model CRS", "--crs");
+  tool.name_setting("seismicity window", "--seismicity-window");
   return tool.run(argc, argv, [&] {
     // Numeric options: finite and in range, before anything is read.
     insar::check_option("--reference-pressure-MPa", o.reference_pressure_MPa, 0, std::numeric_limits<double>::max());
@@ -159,6 +164,11 @@ int main(int argc, char** argv) {
     c.crs_wkt = insar::model_crs(o.crs, o.case_file);
     if (c.crs_wkt.empty()) c.notes.push_back("no model CRS (--crs or the case's crs): GeoTIFFs carry no CRS");
     if (!o.mesh.empty()) c.mesh = read_msh(o.mesh);
+    if (!o.seismicity.empty()) {
+      // Checked before the long work: the columns of the R/r plot (build_seismicity reads it again).
+      const CsvTable t = CsvTable::read(o.seismicity);
+      for (const char* col : {"date", "fault", "R_over_r", "R_over_r_max"}) (void)t.column(col);
+    }
     if (!o.fault_table.empty()) {
       // Checked before the long work: the columns of the max-chi plot (build_faults reads it again).
       const CsvTable t = CsvTable::read(o.fault_table);
@@ -225,6 +235,7 @@ int main(int argc, char** argv) {
     build_faults(c);
     build_calibration(c);
     build_ensemble(c);
+    build_seismicity(c);
     build_comparison(c);
     if (c.figures.empty()) throw InputError(o.results, "nothing to draw: " + (c.notes.empty() ? std::string("?") : c.notes.front()));
 

@@ -297,6 +297,38 @@ def plot_chi_series(m, fig):
     return f
 
 
+def plot_rate_series(m, fig):
+    """R/r per fault against time (log scale): area-weighted (solid) and the largest over the pairs (dashed)."""
+    f = new_figure(m, fig, layout="constrained")
+    ax = f.add_subplot(1, 1, 1)
+    _, rows = read_csv(fig["csv"])
+    faults = {}
+    for fault, d, v, mx in rows:
+        faults.setdefault(fault, ([], [], []))
+        faults[fault][0].append(d)
+        faults[fault][1].append(float(v))
+        faults[fault][2].append(float(mx))
+    lo = hi = None
+    for i, (fault, (fd, fv, fm)) in enumerate(faults.items()):
+        t = dates(fd)
+        ax.plot(t, np.array(fv), "-", color=f"C{i}", lw=1.4, marker="." if t.size < 40 else None, label=f"R/r, {fault}")
+        ax.plot(t, np.array(fm), "--", color=f"C{i}", lw=0.9, label=f"largest R/r over pairs, {fault}")
+        lo = t.min() if lo is None else min(lo, t.min())
+        hi = t.max() if hi is None else max(hi, t.max())
+    if lo == hi:
+        lo, hi = lo - np.timedelta64(1, "D"), hi + np.timedelta64(1, "D")
+    ax.set_xlim(lo, hi)
+    ax.set_yscale("log")
+    ax.axhline(1.0, color="0.3", lw=0.6, ls=":")
+    ax.set_ylabel("seismicity rate / background rate (R/r)")
+    ax.grid(True, lw=0.3, alpha=0.6, which="both")
+    locator = mdates.AutoDateLocator()
+    ax.xaxis.set_major_locator(locator)
+    ax.xaxis.set_major_formatter(mdates.ConciseDateFormatter(locator))
+    draw_pressures(ax, fig, lo, hi, colors=False, fit=False)
+    return f
+
+
 def plot_profile(m, fig):
     f = new_figure(m, fig, layout="constrained")
     header, rows = read_csv(fig["csv"])
@@ -449,6 +481,8 @@ def main():
             f = plot_series(m, fig)
         elif kind == "faults":
             f = plot_faults(m, fig)
+        elif kind == "rate_series":
+            f = plot_rate_series(m, fig)
         elif kind == "chi_series":
             f = plot_chi_series(m, fig)
         elif kind == "profile":

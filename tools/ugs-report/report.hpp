@@ -1,6 +1,7 @@
 // ugs-report internals: what the figure builders share (inputs, the work folder, the figure list
 // handed to plots.py as manifest.json) and the headline numbers of the summary page.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -38,6 +39,8 @@ struct Options {
   std::string fault_table;               // ugs-solve's faults CSV (default: <faults stem>.csv beside --faults)
   std::string calibration;               // ugs-calibrate output folder
   std::string ensemble;                  // ugs-ensemble output folder
+  std::string seismicity;                // ugs-seismicity's per fault and date table (its _windows and _pairs beside it)
+  std::string seismicity_window;         // START/END of the event density map (default: the first window)
   std::vector<std::string> compare;      // LABEL=FILE: other runs on the same mesh
   std::string compare_since;             // changes from this date (default: the first shared date)
   std::string discussion;                // Markdown paragraphs comparing the run with the thesis
@@ -106,6 +109,10 @@ PoolNodes pool_nodes(const Context& c);
 // - s0 and elevation, as work/<name> (pool,s,z; written once): its jwork, or "null" without pools.
 std::string write_pool_outlines(const Context& c, const PoolNodes& pools, const std::string& name, double sx, double sy, double s0);
 
+// The fault's strike (sx, sy) and offset s0 from its pairs' along_strike = x sx + y sy - s0 (least
+// squares; along the pairs' line for a vertical fault): for the pools' outlines on its plane.
+std::array<double, 3> strike_of(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& s);
+
 // Figure builders (each adds figures, headlines and notes).
 void build_maps(Context& c);
 void build_series(Context& c);
@@ -113,6 +120,7 @@ void build_stress(Context& c);
 void build_faults(Context& c);
 void build_calibration(Context& c);
 void build_ensemble(Context& c);
+void build_seismicity(Context& c);
 void build_comparison(Context& c);
 // Writes summary.md and summary.html in the output folder.
 void write_summary(const Context& c);

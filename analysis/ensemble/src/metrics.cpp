@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <functional>
 #include <mutex>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "ugs/insar/inputs.hpp"
 #include "ugs/insar/sampling.hpp"
 #include "ugs/insar/surface.hpp"
+#include "ugs/seismicity/run.hpp"
 
 namespace ugs::ensemble {
 
@@ -157,6 +159,45 @@ void scenario_metrics(const std::string& folder, Metrics& out) {
   out.emplace_back("safe_scale", any ? safe : 0.0);
 }
 
+// The seismicity forecast of the member (docs/seismicity.md) over each window: its per-pair fault CSVs
+// (<stem>_fault_<F>.csv, in name order) with the [seismicity] parameters of its own case copy.
+void seismicity_metrics(const std::string& folder, const std::vector<Phase>& windows, Metrics& out) {
+  if (windows.empty()) return;
+  std::vector<std::string> pairs;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    const std::string n = e.path().filename().string();
+    if (n.find("_fault_") != std::string::npos && n.size() > 4 && n.compare(n.size() - 4, 4, ".csv") == 0) pairs.push_back(e.path().string());
+  }
+  if (pairs.empty())
+    throw InputError(folder, "has no per-pair fault CSV (*_fault_<F>.csv) for the seismicity metrics (expected a faulted ugs-solve run)");
+  std::sort(pairs.begin(), pairs.end());
+  seismicity::RunSettings s;
+  s.inputs = pairs;
+  s.case_file = (fs::path(folder) / "case.toml").string();
+  for (const auto& w : windows) s.windows.push_back(format_iso_date(w.start) + "/" + format_iso_date(w.end));
+  const CaseFile c = read_case_file(s.case_file);
+  const seismicity::StressHistory h = seismicity::read_pair_csvs(pairs);
+  const seismicity::Forecast fc = seismicity::compute(s, c, h);
+  const std::vector<double>& magnitudes = c.seismicity->magnitudes;
+  for (std::size_t i = 0; i < windows.size(); ++i) {
+    auto add = [&](const std::string& who, const std::function<double(double)>& events_above_m, double mc) {
+      const double n = events_above_m(mc);
+      out.emplace_back(fmt::format("seismic_events.{}.{}", who, windows[i].name), n);
+      out.emplace_back(fmt::format("p_event.{}.{}", who, windows[i].name), seismicity::probability_at_least_one(n));
+      for (double m : magnitudes)
+        out.emplace_back(fmt::format("p_event_M{}.{}.{}", m, who, windows[i].name), seismicity::probability_at_least_one(events_above_m(m)));
+    };
+    for (const auto& f : fc.faults)
+      add(f.name, [&](double m) { return seismicity::events_above(f.window_events[i], f.params, m); }, f.params.M_c);
+    // "all": the sum over the faults, above the first fault's M_c (each fault through its own b).
+    add("all", [&](double m) {
+      double n = 0;
+      for (const auto& f : fc.faults) n += seismicity::events_above(f.window_events[i], f.params, m);
+      return n;
+    }, fc.faults.front().params.M_c);
+  }
+}
+
 }  // namespace
 
 Metrics member_metrics(const std::string& folder, const MetricOptions& options) { return member_outputs(folder, options).metrics; }
@@ -173,6 +214,7 @@ MemberOutputs member_outputs(const std::string& folder, const MetricOptions& opt
   }
   fault_metrics(folder, out);
   scenario_metrics(folder, out);
+  seismicity_metrics(folder, options.seismic_windows, out);
   for (const auto& [name, v] : out)
     if (!std::isfinite(v)) throw InputError(folder, fmt::format("metric {} is not finite", name));
   return mo;

@@ -81,6 +81,27 @@ struct FaultSpec {
   double friction_deg = 30.0;
 };
 
+// [seismicity] and its per-fault overrides [seismicity.fault.<name>] (docs/seismicity.md): the
+// rate-and-state seismicity parameters, SI inside. A value an override does not give is the
+// section's; the section gives A_sigma, the stressing rate, the background rate and M_c.
+struct SeismicityValues {
+  std::string where;                          // file:line of the table
+  std::optional<double> A_sigma_Pa;           // A sigma, Pa (> 0)
+  std::optional<double> stressing_rate_Pa_per_s;   // background Coulomb stressing rate s_r, Pa/s (> 0)
+  std::optional<double> background_rate_per_s_m2;  // background rate r of events >= M_c, per s per m2 (> 0)
+  std::optional<double> M_c;                  // magnitude of completeness (the magnitude r counts)
+  std::optional<double> b_value;              // Gutenberg-Richter b (> 0)
+};
+
+struct SeismicitySpec {
+  SeismicityValues values;                    // [seismicity]; b_value defaults to 1
+  std::vector<double> magnitudes;             // magnitudes whose exceedance probability is reported
+  std::map<std::string, SeismicityValues> faults;  // [seismicity.fault.<name>]
+};
+
+// One year in the seismicity parameters' units (MPa/yr, per yr per km2): the Julian year, 365.25 days.
+inline constexpr double kSecondsPerYear = 365.25 * 86400.0;
+
 struct CaseFile {
   std::string path;
   std::string crs;
@@ -118,6 +139,8 @@ struct CaseFile {
   std::string scenario_reference_date;     // empty: the first date of the pressure history
   double scenario_max_scale = 10.0;
   double scenario_tolerance = 0.01;        // relative width of the final bracket
+  // [seismicity] (ugs-seismicity, docs/seismicity.md); absent when the file has no such section.
+  std::optional<SeismicitySpec> seismicity;
 
   // "file:line" of a key given in the file, by its path ("solver.linear_solver"); the file alone
   // for a key not given. The libraries that check their settings after reading name the line.

@@ -8,6 +8,12 @@
 //   chi_max.<fault>                                      the largest chi of the fault over all dates
 //   chi_max.<fault>.<date>                               per date (the solver's *_faults.csv)
 //   safe_scale                                           the safe-scale search's answer (*_scenario.csv)
+//   seismic_events.<fault>.<window>, p_event.<fault>.<window>, p_event_M<m>.<fault>.<window>
+//                                                        with seismic windows: the expected events >= M_c
+//                                                        and P(at least one >= M_c, >= m) over the window,
+//                                                        per fault and for "all" (ugs-seismicity's model,
+//                                                        docs/seismicity.md), from the member's per-pair
+//                                                        CSVs *_fault_<F>.csv and its case's [seismicity]
 // The results file is the member's result.h5 (the {out} of the solver command: full results with
 // `u` or the top-surface file with `u_mm`); the fault and scenario tables are the single
 // *_faults.csv and *_scenario.csv in the member's folder, when there.
@@ -39,6 +45,7 @@ struct MetricOptions {
   double east_weight = 1.0;                         // of the east residuals (ugs-calibrate's misfit)
   insar::MisfitWindow window;
   std::string field;                                // displacement field ("" = u, else u_mm)
+  std::vector<Phase> seismic_windows;               // forecast windows of the seismicity metrics (none: no such metrics)
 };
 
 using Metrics = std::vector<std::pair<std::string, double>>;  // in a fixed order
