@@ -15,6 +15,7 @@
 
 #include "case_toml.hpp"
 #include "pressure_files.hpp"
+#include "strata_toml.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
@@ -31,21 +32,12 @@ constexpr double kLith = 0.0226e6, kHyd = 0.0100e6, kK0 = 0.7;  // Pa/m
 constexpr double kSurface = 0;
 constexpr double kTrace[2][2] = {{900, 2700}, {3100, 2500}};  // as in kFaults; not perpendicular to the dip direction
 
-const char* kStrata = R"(crs = "EPSG:32632"
-faults = "faults.geojson"
-[[surface]]
-name = "Ground"
-constant = 0.0
-[[surface]]
-name = "Bottom"
-constant = -2000.0
-[[unit]]
-name = "Block"
-layers = 10
-[[material]]
-name = "rock"
-units = ["Block"]
-)";
+const std::string kStrata = testcase::StrataToml("crs = \"EPSG:32632\"\nfaults = \"faults.geojson\"\n", testcase::Layout::Compact)
+                                .surface({.name = "Ground", .constant = 0})
+                                .surface({.name = "Bottom", .constant = -2000})
+                                .unit({.name = "Block", .layers = 10})
+                                .material({.name = "rock", .units = {"Block"}})
+                                .str();
 
 // Trace at -200 m; at -1,400 m the plane has moved 1,714 m toward 200 degrees (south-south-west).
 const char* kFaults = R"({"type": "FeatureCollection",

@@ -21,6 +21,7 @@
 #include "fault_meshes.hpp"
 #include "ugs/formats/msh.hpp"
 #include "case_toml.hpp"
+#include "dir_argument.hpp"
 #include "pressure_files.hpp"
 
 using namespace ugs;
@@ -33,10 +34,9 @@ bool in_reservoir(const Point3& c) { return c[0] > 350 && c[0] < 850 && c[1] > 1
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--extra TOML]\n");
-    return 2;
-  }
+  if (const auto rc = ugs::testcase::refuse_dir_argument(
+          argc, argv, "contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--cell M] [--extra TOML] [--months N]"))
+    return *rc;
   const fs::path dir = argv[1];
   double dp = 5.0, friction = 30, cohesion = 0, cell = 50;
   int months = 0;

@@ -1,7 +1,8 @@
 // ugs-solve / ugs-flow case files for tests and benchmark cases, composed from sections with named,
 // typed fields, so that a case writer says what its case holds and not how TOML spells it. The
 // text is that of the hand-written cases it replaces, byte for byte: a head (comment lines, top-level
-// keys) written as given, then the sections in the order added, one blank line between them.
+// keys) written as given, then the sections in the order added, one blank line between them
+// (Layout::Spaced) or none (Layout::Compact). strata_toml.hpp builds ugs-meshgen's strata files alike.
 #pragma once
 #include <optional>
 #include <string>
@@ -11,6 +12,26 @@ namespace ugs::testcase {
 
 // How whole numbers are written: Plain "3" (fmt's shortest form), Decimal "3.0" (a TOML float).
 enum class Numbers { Plain, Decimal };
+std::string toml_number(double v, Numbers numbers);
+enum class Layout { Spaced, Compact };
+
+// The text both builders share: the head, then sections in the order added.
+class TomlSections {
+ public:
+  const std::string& str() const { return text_; }
+
+ protected:
+  TomlSections(std::string head, Numbers numbers, Layout layout) : numbers_(numbers), layout_(layout), text_(std::move(head)) {}
+  void section(const std::string& header);
+  std::string number(double v) const { return toml_number(v, numbers_); }
+  void add(const std::string& lines) { text_ += lines; }
+
+ private:
+  Numbers numbers_;
+  Layout layout_;
+  std::string text_;
+  bool first_ = true;
+};
 
 // [initial_stress]. Gradients in MPa/m are written with four decimals where that is exact (0.0100,
 // 0.0226: as the thesis gives them), otherwise in their shortest form (0.00981).
@@ -63,9 +84,10 @@ struct Pool {
   std::string more{};  // further "key = value" lines as written
 };
 
-class CaseToml {
+class CaseToml : public TomlSections {
  public:
-  explicit CaseToml(std::string head = "", Numbers numbers = Numbers::Plain);
+  explicit CaseToml(std::string head = "", Numbers numbers = Numbers::Plain, Layout layout = Layout::Spaced)
+      : TomlSections(std::move(head), numbers, layout) {}
   CaseToml& initial_stress(const InitialStress& s);
   CaseToml& material(const Material& m);
   CaseToml& boundary(const Boundary& b);
@@ -73,14 +95,6 @@ class CaseToml {
   CaseToml& pool(const Pool& p);
   // Any other table ([solver], [output], [scenario], [model]) with its lines as written.
   CaseToml& table(const std::string& name, const std::string& lines);
-  const std::string& str() const { return text_; }
-
- private:
-  void section(const std::string& header);
-  std::string number(double v) const;
-  Numbers numbers_;
-  std::string text_;
-  bool first_ = true;
 };
 
 // A TOML array of strings: ["a", "b"].
