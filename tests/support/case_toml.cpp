@@ -1,6 +1,7 @@
 #include "case_toml.hpp"
 
 #include <cmath>
+#include <fstream>
 
 #include <fmt/format.h>
 
@@ -31,6 +32,11 @@ std::string string_list(const std::vector<std::string>& items) {
   return s + "]";
 }
 
+void write_text(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream f(p);
+  f << text;
+}
+
 std::string toml_number(double v, Numbers numbers) {
   if (numbers == Numbers::Decimal && std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) return fmt::format("{:.1f}", v);
   return fmt::format("{}", v);
@@ -45,15 +51,16 @@ void TomlSections::section(const std::string& header) {
 CaseToml& CaseToml::initial_stress(const InitialStress& s) {
   section("[initial_stress]");
   if (s.surface_elevation_m) add("surface_elevation_m = " + number(*s.surface_elevation_m) + "\n");
-  add("lithostatic_gradient_MPa_per_m = " + gradient(s.lithostatic_gradient_MPa_per_m) + "\n");
-  add("hydrostatic_gradient_MPa_per_m = " + gradient(s.hydrostatic_gradient_MPa_per_m) + "\n");
+  if (s.lithostatic_gradient_MPa_per_m) add("lithostatic_gradient_MPa_per_m = " + gradient(*s.lithostatic_gradient_MPa_per_m) + "\n");
+  if (s.hydrostatic_gradient_MPa_per_m) add("hydrostatic_gradient_MPa_per_m = " + gradient(*s.hydrostatic_gradient_MPa_per_m) + "\n");
   if (s.k0) add("k0 = " + number(*s.k0) + "\n");
   return *this;
 }
 
 CaseToml& CaseToml::material(const Material& m) {
   section("[[material]]");
-  add("name = \"" + m.name + "\"\nlaw = \"" + m.law + "\"\n");
+  add("name = \"" + m.name + "\"\n");
+  if (!m.law.empty()) add("law = \"" + m.law + "\"\n");
   if (m.E_MPa) add("E_MPa = " + number(*m.E_MPa) + "\n");
   if (m.nu) add("nu = " + number(*m.nu) + "\n");
   if (m.nu_z) add("nu_z = " + number(*m.nu_z) + "\n");

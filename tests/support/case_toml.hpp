@@ -4,6 +4,7 @@
 // keys) written as given, then the sections in the order added, one blank line between them
 // (Layout::Spaced) or none (Layout::Compact). strata_toml.hpp builds ugs-meshgen's strata files alike.
 #pragma once
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,15 +35,17 @@ class TomlSections {
 };
 
 // [initial_stress]. Gradients in MPa/m are written with four decimals where that is exact (0.0100,
-// 0.0226: as the thesis gives them), otherwise in their shortest form (0.00981).
+// 0.0226: as the thesis gives them), otherwise in their shortest form (0.00981); a field left empty
+// is not written (ugs-flow reads the surface elevation alone).
 struct InitialStress {
   std::optional<double> surface_elevation_m{};
-  double lithostatic_gradient_MPa_per_m = 0.0226;
-  double hydrostatic_gradient_MPa_per_m = 0.0100;
+  std::optional<double> lithostatic_gradient_MPa_per_m = 0.0226;
+  std::optional<double> hydrostatic_gradient_MPa_per_m = 0.0100;
   std::optional<double> k0{};
 };
 
-// [[material]]. `law` as the case file spells it (linear, elastic, hypoplastic). thesis_anisotropy
+// [[material]]. `law` as the case file spells it (linear, elastic, hypoplastic; empty: not written,
+// as for ugs-flow, which reads conductivities and porosity alone). thesis_anisotropy
 // writes the hypo-plastic anisotropy of Table 4.3 (nu_z 0.3, Eh_over_Ez 3.0, nuh_over_nuz 0.2);
 // `more` holds further "key = value" lines as written (conductivities, porosity).
 struct Material {
@@ -96,6 +99,9 @@ class CaseToml : public TomlSections {
   // Any other table ([solver], [output], [scenario], [model]) with its lines as written.
   CaseToml& table(const std::string& name, const std::string& lines);
 };
+
+// Writes a case (or any) text to a file.
+void write_text(const std::filesystem::path& p, const std::string& text);
 
 // A TOML array of strings: ["a", "b"].
 std::string string_list(const std::vector<std::string>& items);

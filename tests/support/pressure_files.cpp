@@ -1,11 +1,8 @@
 #include "pressure_files.hpp"
 
-#include <fstream>
-
 #include <fmt/format.h>
 
 #include "ugs/formats/csv.hpp"
-#include "ugs/formats/fields.hpp"
 
 namespace ugs::testcase {
 namespace fs = std::filesystem;
@@ -51,8 +48,8 @@ Series uniform_series(std::vector<std::string> dates, std::vector<double> dp_Pa)
   return {std::move(dates), [dp = std::move(dp_Pa)](const Point3&, std::size_t k) { return dp.at(k); }};
 }
 
-void write_pressure(const fs::path& path, const Mesh& sub, const Series& s) {
-  FieldSeriesWriter w(path.string(), sub);
+void write_pressure(const fs::path& path, const Mesh& sub, const Series& s, const FieldSeriesOptions& o) {
+  FieldSeriesWriter w(path.string(), sub, o);
   for (std::size_t k = 0; k < s.dates.size(); ++k) {
     Field f{"dp", 1, std::vector<double>(sub.num_nodes())};
     for (std::size_t v = 0; v < sub.num_nodes(); ++v) f.values[v] = s.dp(sub.nodes[v], k);
@@ -69,11 +66,6 @@ std::vector<std::string> monthly(int y0, int m0, int y1, int m1) {
     if (++m == 13) m = 1, ++y;
   }
   return d;
-}
-
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream f(p);
-  f << text;
 }
 
 }  // namespace ugs::testcase
