@@ -19,7 +19,6 @@
 #include "ugs/meshing/box_mesh.hpp"
 #include "case_toml.hpp"
 #include "dir_argument.hpp"
-#include "pressure_files.hpp"
 
 namespace {
 

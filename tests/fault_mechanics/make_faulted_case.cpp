@@ -13,10 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "fault_meshes.hpp"
 #include "ugs/formats/msh.hpp"
