@@ -38,27 +38,15 @@
 #include "ugs/meshing/fault_insert.hpp"
 #include "ugs/meshing/fault_select.hpp"
 #include "ugs/meshing/fault_traces.hpp"
-#include "layered_case.hpp"
+#include "case_toml.hpp"
+#include "dir_argument.hpp"
+#include "pressure_files.hpp"
+#include "six_faults.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Trace {
-  const char* name;
-  double x0, y0, x1, y1, top, bottom, dip, dip_dir;
-};
-
-// The faults of bench/faultinsert/make_bench_mesh.cpp.
-const Trace kTraces[] = {
-    {"regional_west", 7000, 0, 7000, 8400, -500, -6600, 45, 270},
-    {"regional_south", 0, 7000, 8400, 7000, -500, -6600, 45, 180},
-    {"local_1", 3000, 2000, 3000, 6000, -2000, -4000, 90, 90},
-    {"local_2", 3000, 1500, 7000, 1500, -1000, -3000, 90, 0},
-    {"local_3", 4000, 2000, 7000, 5000, -4000, -6000, 90, 135},
-    {"local_4", 1000, 3000, 5000, 7000, -3000, -5000, 90, 315},
-};
 
 constexpr double kCx = 4200, kCy = 4200, kRx = 2000, kRy = 1400, kAq = 3000, kTop = -1400, kBot = -1500;
 
@@ -72,13 +60,13 @@ std::string material(const Point3& c) {
 }
 
 void write_flow(const Mesh& m, const fs::path& path) {
-  cases::Series s;
+  testcase::Series s;
   for (int k = 0; k <= 6; ++k) s.dates.push_back(fmt::format("2015-{:02d}-01", 5 + k));
   s.dp = [](const Point3& x, std::size_t k) {
     const double pool = (-6.0 + 5.0 * static_cast<double>(k) / 6.0) * 1e6;
     return pool * std::exp(-std::max(0.0, radius(x) - kRx) / 1000.0);
   };
-  cases::write_pressure(path, cases::submesh(m, {"pool", "aquifer"}), s);
+  testcase::write_pressure(path, testcase::submesh(m, {"pool", "aquifer"}), s);
 }
 
 // The pool's pressure change [Pa] at month k after 1950-01 (history).
@@ -90,53 +78,26 @@ double pool_history(long k) {
 }
 
 void write_flow_history(const Mesh& m, const fs::path& path) {
-  cases::Series s;
-  s.dates = cases::monthly(1950, 1, 2034, 1);
+  testcase::Series s;
+  s.dates = testcase::monthly(1950, 1, 2034, 1);
   s.dp = [](const Point3& x, std::size_t k) {
     const double d = std::max(0.0, radius(x) - kRx);
     const double lag = pool_history(static_cast<long>(k) - 2);
     return d == 0 ? pool_history(static_cast<long>(k)) : lag * std::exp(-d / 1000.0);
   };
-  cases::write_pressure(path, cases::submesh(m, {"pool", "aquifer"}), s);
+  testcase::write_pressure(path, testcase::submesh(m, {"pool", "aquifer"}), s);
 }
 
 std::string case_text(bool faults) {
-  std::string s = R"(# Thesis-scale faulted benchmark (bench/faulted): elastic rock with c_M from eq. 4.1, a hypo-plastic
-# pool and aquifer (Table 4.3), six faults (cohesion 0, friction 30 degrees), one storage half-cycle.
-[initial_stress]
-surface_elevation_m = 0
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-k0 = 0.9
-
-[[material]]
-name = "rock"
-law = "elastic"
-nu = 0.3
-
-[[material]]
-name = "pool"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 3
-
-[[material]]
-name = "aquifer"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 3
-
-[output]
-dates = ["2015-05-01", "2015-11-01"]
-fields = ["displacement", "stress_change"]
-)";
+  testcase::CaseToml c(
+      "# Thesis-scale faulted benchmark (bench/faulted): elastic rock with c_M from eq. 4.1, a hypo-plastic\n"
+      "# pool and aquifer (Table 4.3), six faults (cohesion 0, friction 30 degrees), one storage half-cycle.\n");
+  c.initial_stress({.surface_elevation_m = 0, .k0 = 0.9}).material(testcase::elastic("rock", 0.3));
+  c.material(testcase::hypoplastic("pool", 3)).material(testcase::hypoplastic("aquifer", 3));
+  c.table("output", "dates = [\"2015-05-01\", \"2015-11-01\"]\nfields = [\"displacement\", \"stress_change\"]\n");
   if (faults)
-    for (const auto& t : kTraces) s += fmt::format("\n[[fault]]\nname = \"{}\"\ncohesion_MPa = 0\nfriction_deg = 30\n", t.name);
-  return s;
+    for (const auto& t : testcase::kSixFaults) c.fault({t.name, 0, 30});
+  return c.str();
 }
 
 }  // namespace
@@ -156,11 +117,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: make_faulted_bench DIR [--coarsen K] [--history]\n");
     return 2;
   }
-  // The first argument is the folder to write: an option there (--help) would become a folder.
-  if (argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: make_faulted_bench DIR [--coarsen K] [--history]\n");
-    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
-  }
+  if (const auto rc = testcase::refuse_dir_argument(argc, argv, "make_faulted_bench DIR [--coarsen K] [--history]")) return *rc;
   const fs::path dir = argv[1];
   const double h = 100.0 * coarsen;
   // Snaps a coordinate to the grid line nearest to it (origin o).
@@ -179,7 +136,7 @@ int main(int argc, char** argv) {
     std::ofstream(dir / "case_plain.toml") << case_text(false);
 
     std::vector<FaultTrace> traces;
-    for (const auto& t : kTraces) {
+    for (const auto& t : testcase::kSixFaults) {
       FaultTrace ft;
       ft.name = t.name;
       ft.where = "bench";

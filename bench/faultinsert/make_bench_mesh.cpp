@@ -19,35 +19,15 @@
 #include "ugs/meshing/box_mesh.hpp"
 #include "ugs/meshing/fault_select.hpp"
 #include "ugs/meshing/fault_traces.hpp"
-
-namespace {
-
-struct Trace {
-  const char* name;
-  double x0, y0, x1, y1, top, bottom, dip, dip_dir;
-};
-
-const Trace kTraces[] = {
-    {"regional_west", 7000, 0, 7000, 8400, -500, -6600, 45, 270},
-    {"regional_south", 0, 7000, 8400, 7000, -500, -6600, 45, 180},
-    {"local_1", 3000, 2000, 3000, 6000, -2000, -4000, 90, 90},
-    {"local_2", 3000, 1500, 7000, 1500, -1000, -3000, 90, 0},
-    {"local_3", 4000, 2000, 7000, 5000, -4000, -6000, 90, 135},
-    {"local_4", 1000, 3000, 5000, 7000, -3000, -5000, 90, 315},
-};
-
-}  // namespace
+#include "dir_argument.hpp"
+#include "six_faults.hpp"
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
+  if (argc > 2) {
     std::fprintf(stderr, "usage: make_faultinsert_bench DIR\n");
     return 2;
   }
-  // The first argument is the folder to write: an option there (--help) would become a folder.
-  if (argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: make_faultinsert_bench DIR\n");
-    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
-  }
+  if (const auto rc = ugs::testcase::refuse_dir_argument(argc, argv, "make_faultinsert_bench DIR")) return *rc;
   const std::filesystem::path dir = argv[1];
   std::filesystem::create_directories(dir);
   try {
@@ -62,14 +42,14 @@ int main(int argc, char** argv) {
     std::ofstream g(dir / "faults.geojson");
     g << "{\"type\":\"FeatureCollection\",\"name\":\"faults\",\"features\":[\n";
     std::vector<ugs::FaultTrace> traces;
-    for (std::size_t i = 0; i < std::size(kTraces); ++i) {
-      const Trace& t = kTraces[i];
+    for (std::size_t i = 0; i < std::size(ugs::testcase::kSixFaults); ++i) {
+      const auto& t = ugs::testcase::kSixFaults[i];
       char line[512];
       std::snprintf(line, sizeof line,
                     "{\"type\":\"Feature\",\"properties\":{\"name\":\"%s\",\"top_m\":%g,\"bottom_m\":%g,\"dip_deg\":%g,"
                     "\"dip_dir_deg\":%g},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[[%g,%g],[%g,%g]]}}%s\n",
                     t.name, t.top, t.bottom, t.dip, t.dip_dir, t.x0, t.y0, t.x1, t.y1,
-                    i + 1 < std::size(kTraces) ? "," : "");
+                    i + 1 < std::size(ugs::testcase::kSixFaults) ? "," : "");
       g << line;
       ugs::FaultTrace ft;
       ft.name = t.name;

@@ -17,6 +17,8 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/box_mesh.hpp"
+#include "case_toml.hpp"
+#include "dir_argument.hpp"
 
 namespace {
 
@@ -40,15 +42,7 @@ int main(int argc, char** argv) {
     write_raw(ugs::read_msh(argv[2]), argv[4], argv[3]);
     return 0;
   }
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: make_bench_case DIR [N] [SCHEDULE.csv]\n");
-    return 2;
-  }
-  // The first argument is the folder to write: an option there (--help) would become a folder.
-  if (argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: make_bench_case DIR [N] [SCHEDULE.csv]\n");
-    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
-  }
+  if (const auto rc = ugs::testcase::refuse_dir_argument(argc, argv, "make_bench_case DIR [N] [SCHEDULE.csv]")) return *rc;
   const std::filesystem::path dir = argv[1];
   const int n = argc > 2 ? std::stoi(argv[2]) : 114;
   std::filesystem::create_directories(dir);
@@ -86,17 +80,15 @@ int main(int argc, char** argv) {
       }
     w.commit();
   }
-  std::ofstream c(dir / "case.toml");
-  c << "# ugs-flow benchmark: Pool C flow layers at the thesis' scale (Table 4.2 conductivities)\n"
-       "[model]\nstart = \"1950-01-01\"\nend = \"2033-12-01\"\n\n"
-       "[initial_stress]\nsurface_elevation_m = 50.0\nlithostatic_gradient_MPa_per_m = 0.0226\n"
-       "hydrostatic_gradient_MPa_per_m = 0.00981\n\n"
-       "[[material]]\nname = \"pool_c\"\nlaw = \"hypoplastic\"\nc_R = 3.0\nK_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]\n"
-       "porosity = 0.20\n\n"
-       "[[material]]\nname = \"aquifer_pool_c\"\nlaw = \"hypoplastic\"\nc_R = 3.0\nK_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]\n"
-       "porosity = 0.20\n\n"
-       "[[pool]]\nname = \"Pool C\"\nmaterials = [\"pool_c\"]\nschedule = \""
-    << schedule << "\"\ncolumn = \"p_norm\"\nreference_pressure_MPa = 15.2055\n";
+  namespace tc = ugs::testcase;
+  tc::CaseToml c("# ugs-flow benchmark: Pool C flow layers at the thesis' scale (Table 4.2 conductivities)\n",
+                 tc::Numbers::Decimal);
+  c.table("model", "start = \"1950-01-01\"\nend = \"2033-12-01\"\n");
+  c.initial_stress({.surface_elevation_m = 50, .hydrostatic_gradient_MPa_per_m = 0.00981});
+  for (const char* name : {"pool_c", "aquifer_pool_c"})
+    c.material({.name = name, .law = "hypoplastic", .c_R = 3, .more = "K_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]\nporosity = 0.20\n"});
+  c.pool({.name = "Pool C", .materials = {"pool_c"}, .schedule = schedule, .column = "p_norm", .more = "reference_pressure_MPa = 15.2055\n"});
+  tc::write_text(dir / "case.toml", c.str());
   std::printf("%s: %zu nodes, %zu tetrahedra\n", (dir / "mesh.msh").c_str(), mesh.num_nodes(),
               mesh.count(ugs::ElementType::Tetrahedron));
   return 0;

@@ -20,10 +20,12 @@
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/box_mesh.hpp"
-#include "layered_case.hpp"
+#include "dir_argument.hpp"
+#include "layered_model.hpp"
+#include "pressure_files.hpp"
 
 using namespace ugs;
-using namespace ugs::cases;
+using namespace ugs::testcase;
 namespace fs = std::filesystem;
 
 namespace {
@@ -96,29 +98,12 @@ void make_thesis(const fs::path& dir, bool history, bool linear, double scale) {
                spec.z.size(), m.num_nodes(), m.count(ElementType::Tetrahedron));
   if (linear) {
     // One linear-elastic solve: depth-dependent elastic units everywhere, Pool C depleted by 10 MPa.
-    write_text(dir / "case.toml", R"(# Thesis-scale linear elastic benchmark (bench/solve): elastic units with c_M from eq. 4.1
-# at the initial effective stress, isotropic nu = 0.3; Pool C depleted by 10 MPa.
-[initial_stress]
-surface_elevation_m = 50
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-k0 = 0.9
-
-[[material]]
-name = "rock"
-law = "elastic"
-nu = 0.3
-
-[[material]]
-name = "pool_c"
-law = "elastic"
-nu = 0.3
-
-[output]
-fields = ["displacement"]
-)");
-    Series s{{"2000-01-01"}, [](const Point3&, std::size_t) { return -10e6; }};
-    write_pressure(dir / "flow.h5", submesh(m, {"pool_c"}), s);
+    CaseToml c(
+        "# Thesis-scale linear elastic benchmark (bench/solve): elastic units with c_M from eq. 4.1\n"
+        "# at the initial effective stress, isotropic nu = 0.3; Pool C depleted by 10 MPa.\n");
+    c.initial_stress({.surface_elevation_m = 50, .k0 = 0.9}).material(elastic("rock", 0.3)).material(elastic("pool_c", 0.3));
+    write_text(dir / "case.toml", c.table("output", "fields = [\"displacement\"]\n").str());
+    write_pressure(dir / "flow.h5", submesh(m, {"pool_c"}), uniform_series({"2000-01-01"}, {-10e6}));
     // The same mesh for the FEniCSx peer: a field series holding coordinates, cells and the
     // pressure change of each cell (the Pool C cells of the case).
     FieldSeriesWriter w((dir / "mesh_arrays.h5").string(), m);
@@ -131,11 +116,9 @@ fields = ["displacement"]
     w.commit();
     return;
   }
-  write_text(dir / "case.toml", layered_case(history ? R"(
-[output]
-dates = ["2015-05-01", "2015-11-01", "2016-05-01", "2025-05-01", "2025-11-01"]
-)"
-                                                    : ""));
+  CaseToml c = layered_case();
+  if (history) c.table("output", "dates = [\"2015-05-01\", \"2015-11-01\", \"2016-05-01\", \"2025-05-01\", \"2025-11-01\"]\n");
+  write_text(dir / "case.toml", c.str());
   const auto dates = history ? monthly(1950, 1, 2033, 12) : monthly(1950, 1, 1951, 12);
   write_pools(dir, m, L, dates, 1950, 15.2e6);
 }
@@ -143,15 +126,7 @@ dates = ["2015-05-01", "2015-11-01", "2016-05-01", "2025-05-01", "2025-11-01"]
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: make_thesis_case DIR [--linear | --history] [--scale F]\n");
-    return 2;
-  }
-  // The first argument is the folder to write: an option there (--help) would become a folder.
-  if (argv[1][0] == '-') {
-    std::fprintf(stderr, "usage: make_thesis_case DIR [--linear | --history] [--scale F]\n");
-    return argv[1] == std::string("--help") || argv[1] == std::string("-h") ? 0 : 2;
-  }
+  if (const auto rc = refuse_dir_argument(argc, argv, "make_thesis_case DIR [--linear | --history] [--scale F]")) return *rc;
   const fs::path dir = argv[1];
   bool history = false, linear = false;
   double scale = 1.0;

@@ -15,6 +15,8 @@
 #include <opm/io/eclipse/EclOutput.hpp>
 #include <opm/io/eclipse/ERst.hpp>
 
+#include "case_toml.hpp"
+#include "pressure_files.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
@@ -592,18 +594,12 @@ TEST_F(ImportEclipse, SolveTakesTheImportedPressureAndItWinsOverANodeField) {
   // elements keep the simulator's pressure), and adds zero elsewhere: the same displacements.
   ASSERT_EQ(import(path("TINY.EGRID") + " --mesh " + path("mesh.msh") + " -o " + path("sim.h5")).exit_code, 0);
   const Mesh mesh = read_msh(path("mesh.msh"));
-  {
-    FieldSeriesWriter w(path("zero.h5"), mesh);
-    const Field zero{"dp", 1, std::vector<double>(mesh.num_nodes(), 0.0)};
-    w.add_step("2020-01-01", when_s("2020-01-01"), std::span<const Field>(&zero, 1));
-    w.add_step("2020-04-30", when_s("2020-04-30"), std::span<const Field>(&zero, 1));
-    w.commit();
-  }
-  test::spit(*dir_ / "solve.toml",
-             "[initial_stress]\nsurface_elevation_m = 0\nlithostatic_gradient_MPa_per_m = 0.0226\n"
-             "hydrostatic_gradient_MPa_per_m = 0.0100\nk0 = 0.9\n"
-             "[[material]]\nname = \"cap\"\nlaw = \"elastic\"\nnu = 0.3\n"
-             "[[material]]\nname = \"reservoir\"\nlaw = \"elastic\"\nnu = 0.3\n");
+  testcase::write_pressure(path("zero.h5"), mesh, testcase::uniform_series({"2020-01-01", "2020-04-30"}, {0.0, 0.0}));
+  test::spit(*dir_ / "solve.toml", testcase::CaseToml("", testcase::Numbers::Plain, testcase::Layout::Compact)
+                                       .initial_stress({.surface_elevation_m = 0, .k0 = 0.9})
+                                       .material(testcase::elastic("cap", 0.3))
+                                       .material(testcase::elastic("reservoir", 0.3))
+                                       .str());
   const std::string solve = test::tool("ugs-solve") + " " + path("mesh.msh") + " --case " + path("solve.toml");
   const auto a = test::run(solve + " --pressure " + path("sim.h5") + " -o " + path("a.h5"));
   ASSERT_EQ(a.exit_code, 0) << a.err;

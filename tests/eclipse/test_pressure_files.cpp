@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "pressure_files.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
@@ -67,13 +68,7 @@ protected:
     model_ = model_of(mesh_);
     ASSERT_EQ(model_.tets.size(), 6u);
     // ugs-flow: +1 MPa at every node on 2020-03-01.
-    {
-      FieldSeriesWriter w((dir_ / "flow.h5").string(), mesh_);
-      const Field zero{"dp", 1, std::vector<double>(mesh_.num_nodes(), 0.0)}, up{"dp", 1, std::vector<double>(mesh_.num_nodes(), 1e6)};
-      w.add_step("2020-01-01", when("2020-01-01"), std::span<const Field>(&zero, 1));
-      w.add_step("2020-03-01", when("2020-03-01"), std::span<const Field>(&up, 1));
-      w.commit();
-    }
+    testcase::write_pressure(dir_ / "flow.h5", mesh_, testcase::uniform_series({"2020-01-01", "2020-03-01"}, {0.0, 1e6}));
     // The simulator: the first three tetrahedra, -2, -4, -6 MPa.
     write_cells("sim.h5", {model_.tet_tags[0], model_.tet_tags[1], model_.tet_tags[2]});
   }

@@ -13,7 +13,8 @@ namespace ugs::test {
 // An [[parameter]] entry, uniform on [lower, upper].
 inline std::string uniform_parameter(const std::string& path, double lower, double upper) {
   return fmt::format("\n[[parameter]]\npath = \"{}\"\ndistribution = \"uniform\"\nlower = {}\nupper = {}\n", path,
-                     toml_number(lower), toml_number(upper));
+                     testcase::toml_number(lower, testcase::Numbers::Decimal),
+                     testcase::toml_number(upper, testcase::Numbers::Decimal));
 }
 // Parameters of the box: c_R of Pool C (decides the storage uplift), c_R of Pool A (its pressure is
 // the same on both dates of the storage phase), scale_tolerance (unused without a safe-scale search).

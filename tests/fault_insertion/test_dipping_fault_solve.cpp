@@ -13,6 +13,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "case_toml.hpp"
+#include "pressure_files.hpp"
+#include "strata_toml.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
@@ -29,21 +32,12 @@ constexpr double kLith = 0.0226e6, kHyd = 0.0100e6, kK0 = 0.7;  // Pa/m
 constexpr double kSurface = 0;
 constexpr double kTrace[2][2] = {{900, 2700}, {3100, 2500}};  // as in kFaults; not perpendicular to the dip direction
 
-const char* kStrata = R"(crs = "EPSG:32632"
-faults = "faults.geojson"
-[[surface]]
-name = "Ground"
-constant = 0.0
-[[surface]]
-name = "Bottom"
-constant = -2000.0
-[[unit]]
-name = "Block"
-layers = 10
-[[material]]
-name = "rock"
-units = ["Block"]
-)";
+const std::string kStrata = testcase::StrataToml("crs = \"EPSG:32632\"\nfaults = \"faults.geojson\"\n", testcase::Layout::Compact)
+                                .surface({.name = "Ground", .constant = 0})
+                                .surface({.name = "Bottom", .constant = -2000})
+                                .unit({.name = "Block", .layers = 10})
+                                .material({.name = "rock", .units = {"Block"}})
+                                .str();
 
 // Trace at -200 m; at -1,400 m the plane has moved 1,714 m toward 200 degrees (south-south-west).
 const char* kFaults = R"({"type": "FeatureCollection",
@@ -53,52 +47,13 @@ const char* kFaults = R"({"type": "FeatureCollection",
   "geometry": { "type": "LineString", "coordinates": [[900, 2700], [3100, 2500]] } }]}
 )";
 
-const char* kCase = R"([initial_stress]
-surface_elevation_m = 0
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-k0 = 0.7
-
-[[material]]
-name = "rock"
-law = "linear"
-E_MPa = 10000
-nu = 0.25
-
-[boundary]
-fixed = ["bottom", "west", "east", "south", "north"]
-
-[[fault]]
-name = "F"
-cohesion_MPa = 1
-friction_deg = 35
-
-[solver]
-linear_solver = "mumps"
-)";
-
-// The tetrahedra of the faulted mesh with their node and element tags: the "flow sub-mesh" that
-// carries the pressure change (zero here).
-Mesh tetrahedra_of(const Mesh& m) {
-  Mesh s;
-  std::vector<std::int64_t> local(m.num_nodes(), -1);
-  for (const auto& b : m.blocks) {
-    if (b.type != ElementType::Tetrahedron) continue;
-    const std::string group = m.physical_name_of(b.entity_dim, b.entity_tag);
-    const int e = s.entity_for_physical(3, group);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      std::uint32_t n[4];
-      const auto el = b.element(i);
-      for (int k = 0; k < 4; ++k) {
-        if (local[el[k]] < 0) local[el[k]] = s.add_node(m.nodes[el[k]], m.node_tags[el[k]]);
-        n[k] = static_cast<std::uint32_t>(local[el[k]]);
-      }
-      s.add_element(s.block(3, e, ElementType::Tetrahedron), n, b.tags[i]);
-    }
-  }
-  s.update_entity_bboxes();
-  return s;
-}
+const std::string kCase = testcase::CaseToml()
+                              .initial_stress({.surface_elevation_m = kSurface, .k0 = kK0})
+                              .material(testcase::linear("rock", 10000, 0.25))
+                              .boundary(testcase::fixed_sides())
+                              .fault({"F", 1, 35})
+                              .table("solver", "linear_solver = \"mumps\"\n")
+                              .str();
 
 TEST(DippingFaultSolve, TractionsEqualTheInitialStressProjectedOnThePlane) {
   const fs::path dir = temp_dir("dipping-fault-solve");
@@ -116,15 +71,8 @@ TEST(DippingFaultSolve, TractionsEqualTheInitialStressProjectedOnThePlane) {
 
   // No pressure change: dp = 0 at two dates.
   const Mesh faulted = read_msh((dir / "faulted.msh").string());
-  {
-    const Mesh sub = tetrahedra_of(faulted);
-    FieldSeriesWriter w((dir / "flow.h5").string(), sub);
-    for (const char* date : {"2000-01-01", "2001-01-01"}) {
-      const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), 0.0)}};
-      w.add_step(date, static_cast<double>(*parse_iso_date(date)), f);
-    }
-    w.commit();
-  }
+  testcase::write_pressure(dir / "flow.h5", testcase::tetrahedra_of(faulted),
+                           testcase::uniform_series({"2000-01-01", "2001-01-01"}, {0.0, 0.0}));
   r = run(cd + tool("ugs-solve") + " faulted.msh --case case.toml --pressure flow.h5 --solver mumps -o out.h5");
   ASSERT_EQ(r.exit_code, 0) << r.err;
 

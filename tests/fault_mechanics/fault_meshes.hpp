@@ -60,6 +60,16 @@ inline FaultInsertReport insert_all_faults(Mesh& mesh) {
   return insert_faults(mesh, o);
 }
 
+// Box of lx x ly m in cells of 50 m, nine layers of thickness dz below z = 0: the bed of a planar
+// fault through grid nodes dipping atan(dz / 50 m) (see above).
+inline Mesh nine_layer_box(double lx, double ly, double dz) {
+  BoxMeshSpec spec;
+  spec.x = linspace(0, lx, static_cast<int>(std::lround(lx / 50)));
+  spec.y = linspace(0, ly, static_cast<int>(std::lround(ly / 50)));
+  spec.z = linspace(-9 * dz, 0, 9);
+  return make_box_mesh(spec);
+}
+
 // Box 1000 x 600 x 1000 m (z from -1000 to 0) of cells of size h with a fault "F" dipping 45
 // degrees through the line x = 300, z = -1000, for y in (100, 500) and z in (-800, -300): buried on
 // three sides, it reaches the east side (x = 1000) along z = -300.

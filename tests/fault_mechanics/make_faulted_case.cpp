@@ -13,16 +13,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
-#include <fmt/format.h>
-
 #include "fault_meshes.hpp"
-#include "ugs/formats/csv.hpp"
-#include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
-#include "layered_case.hpp"
+#include "case_toml.hpp"
+#include "dir_argument.hpp"
+#include "pressure_files.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
@@ -34,10 +31,9 @@ bool in_reservoir(const Point3& c) { return c[0] > 350 && c[0] < 850 && c[1] > 1
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--extra TOML]\n");
-    return 2;
-  }
+  if (const auto rc = ugs::testcase::refuse_dir_argument(
+          argc, argv, "contact_make_case DIR [--dp MPa] [--friction DEG] [--cohesion MPa] [--cell M] [--extra TOML] [--months N]"))
+    return *rc;
   const fs::path dir = argv[1];
   double dp = 5.0, friction = 30, cohesion = 0, cell = 50;
   int months = 0;
@@ -68,55 +64,22 @@ int main(int argc, char** argv) {
   m.provenance.push_back("contact_make_case (tests/fault_mechanics)");
   write_msh(m, (dir / "faulted.msh").string());
 
-  std::ofstream(dir / "case.toml") << fmt::format(R"(# Faulted test case (tests/fault_mechanics): linear elastic rock, a reservoir block crossed by fault F.
-[initial_stress]
-surface_elevation_m = 0
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-k0 = 0.7
+  namespace tc = ugs::testcase;
+  tc::CaseToml c("# Faulted test case (tests/fault_mechanics): linear elastic rock, a reservoir block crossed by fault F.\n");
+  c.initial_stress({.surface_elevation_m = 0, .k0 = 0.7});
+  c.material(tc::linear("rock", 10000, 0.25)).material(tc::linear("reservoir", 5000, 0.25)).boundary(tc::fixed_sides());
+  c.fault({"F", cohesion, friction}).table("solver", "linear_solver = \"mumps\"\n" + extra);
+  tc::write_text(dir / "case.toml", c.str());
 
-[[material]]
-name = "rock"
-law = "linear"
-E_MPa = 10000
-nu = 0.25
-
-[[material]]
-name = "reservoir"
-law = "linear"
-E_MPa = 5000
-nu = 0.25
-
-[boundary]
-fixed = ["bottom", "west", "east", "south", "north"]
-
-[[fault]]
-name = "F"
-cohesion_MPa = {}
-friction_deg = {}
-
-[solver]
-linear_solver = "mumps"
-{})",
-                                                  cohesion, friction, extra);
-
-  const Mesh sub = cases::submesh(m, {"reservoir"});
-  FieldSeriesWriter w((dir / "flow.h5").string(), sub);
+  const Mesh sub = tc::submesh(m, {"reservoir"});
+  tc::Series s;
   if (months > 0) {
-    for (int k = 0; k <= months; ++k) {
-      const std::string date = fmt::format("{:04d}-{:02d}-01", 2000 + k / 12, 1 + k % 12);
-      const double v = k % 6 == 0 ? 0.0 : dp * 1e6 * std::sin(2 * M_PI * k / 12);  // exact zeros
-      const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), v)}};
-      w.add_step(date, static_cast<double>(*parse_iso_date(date)), f);
-    }
+    s.dates = tc::monthly(2000, 1, 2000 + months / 12, 1 + months % 12);
+    s.dp = [dp](const Point3&, std::size_t k) { return k % 6 == 0 ? 0.0 : dp * 1e6 * std::sin(2 * M_PI * k / 12); };  // exact zeros
   } else {
-    const char* dates[] = {"2000-01-01", "2001-01-01"};
-    for (int k = 0; k < 2; ++k) {
-      const Field f[] = {{"dp", 1, std::vector<double>(sub.num_nodes(), k == 0 ? 0.0 : dp * 1e6)}};
-      w.add_step(dates[k], static_cast<double>(*parse_iso_date(dates[k])), f);
-    }
+    s = tc::uniform_series({"2000-01-01", "2001-01-01"}, {0.0, dp * 1e6});
   }
-  w.commit();
+  tc::write_pressure(dir / "flow.h5", sub, s);
   std::fprintf(stderr, "contact_make_case: %zu nodes, %zu tetrahedra, %zu interface elements; reservoir sub-mesh %zu nodes\n",
                m.num_nodes(), m.count(ElementType::Tetrahedron), m.count(ElementType::Prism), sub.num_nodes());
   return 0;

@@ -16,7 +16,6 @@
 #include "ugs/contact/fault_model.hpp"
 #include "ugs/fem/voigt.hpp"
 #include "ugs/mechanics/model.hpp"
-#include "ugs/meshing/box_mesh.hpp"
 
 using namespace ugs;
 
@@ -105,11 +104,7 @@ Point3 unit_normal(const FaultCase& f) {
 // Box of 20 x 20 x 9 cells, with a buried planar fault through (500, 500, z of the 5th layer), inserted.
 Mesh faulted_box(const FaultCase& f) {
   const double h = 50, dz = f.dip_deg == 90 ? h : h * std::tan(f.dip_deg * M_PI / 180);
-  BoxMeshSpec spec;
-  spec.x = linspace(0, 1000, 20);
-  spec.y = linspace(0, 1000, 20);
-  spec.z = linspace(-9 * dz, 0, 9);
-  Mesh mesh = make_box_mesh(spec);
+  Mesh mesh = test::nine_layer_box(1000, 1000, dz);
   const double zb = -9 * dz;
   test::add_planar_fault(
       mesh, "F", {500, 500, zb + 5 * dz}, unit_normal(f),

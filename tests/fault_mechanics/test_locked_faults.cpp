@@ -18,7 +18,6 @@
 #include "ugs/mechanics/model.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
 #include "ugs/mechanics/solver.hpp"
-#include "ugs/meshing/box_mesh.hpp"
 
 using namespace ugs;
 
@@ -99,11 +98,7 @@ INSTANTIATE_TEST_SUITE_P(Solvers, V6, ::testing::Values(contact::SaddleSolver::M
 // ---- projection of a uniform stress ------------------------------------------------------------
 TEST(Projection, DippingFaultTractionsEqualProjectedStress) {
   const double dip = 60 * M_PI / 180, dx = 50, dz = dx * std::tan(dip);
-  BoxMeshSpec spec;
-  spec.x = linspace(0, 1000, 20);
-  spec.y = linspace(0, 600, 12);
-  spec.z = linspace(-9 * dz, 0, 9);
-  Mesh mesh = make_box_mesh(spec);
+  Mesh mesh = test::nine_layer_box(1000, 600, dz);
   const double z0 = -9 * dz;
   // Plane through (200, y, z0) rising with slope dz/dx: normal (-dz, 0, dx).
   test::add_planar_fault(

@@ -11,6 +11,7 @@
 
 #include "case_builders.hpp"
 #include "fault_meshes.hpp"
+#include "pressure_files.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/mechanics/model.hpp"
 #include "ugs/mechanics/petsc_session.hpp"
@@ -50,13 +51,7 @@ TEST(PressureOnFaults, FlowFieldOfTheUnfaultedMeshDrivesTheFaultedOne) {
   {
     FieldSeriesOptions o;
     o.cell_types = {ElementType::Tetrahedron};
-    FieldSeriesWriter w(path, plain, o);
-    std::vector<double> v(plain.num_nodes());
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = dp_of(plain.nodes[i]);
-    const std::vector<Field> f{{"dp", 1, v}};
-    w.add_step("2000-01-01", 946684800.0, f);
-    w.add_step("2001-01-01", 978307200.0, f);
-    w.commit();
+    testcase::write_pressure(path, plain, {{"2000-01-01", "2001-01-01"}, [](const Point3& x, std::size_t) { return dp_of(x); }}, o);
   }
 
   const CaseFile cs = linear_case();

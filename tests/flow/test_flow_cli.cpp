@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <regex>
 
+#include "case_toml.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
@@ -19,34 +20,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCase = R"([model]
-start = "1950-01-01"
-end = "1952-01-01"
-
-[initial_stress]
-surface_elevation_m = 50.0
-
-[[material]]
-name = "pool"
-K_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]
-porosity = 0.2
-
-[[material]]
-name = "aquifer"
-K_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]
-porosity = 0.2
-
-[[material]]
-name = "ghost"
-porosity = 0.2
-
-[[pool]]
-name = "Pool"
-materials = ["pool"]
-schedule = "pool.csv"
-column = "p_MPa"
-reference_pressure_MPa = 15.0
-)";
+const std::string kCase = [] {
+  namespace tc = testcase;
+  const std::string conductivity = "K_m_per_s = [2.04e-7, 2.04e-7, 2.04e-8]\n";
+  tc::CaseToml c("", tc::Numbers::Decimal);
+  c.table("model", "start = \"1950-01-01\"\nend = \"1952-01-01\"\n");
+  c.initial_stress({.surface_elevation_m = 50, .lithostatic_gradient_MPa_per_m = {}, .hydrostatic_gradient_MPa_per_m = {}});
+  c.material({.name = "pool", .more = conductivity + "porosity = 0.2\n"});
+  c.material({.name = "aquifer", .more = conductivity + "porosity = 0.2\n"});
+  c.material({.name = "ghost", .more = "porosity = 0.2\n"});
+  c.pool({.name = "Pool", .materials = {"pool"}, .schedule = "pool.csv", .more = "reference_pressure_MPa = 15.0\n"});
+  return c.str();
+}();
 
 std::string schedule_rows(int months) {
   std::string s = "date,p_MPa\n";

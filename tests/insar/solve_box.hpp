@@ -9,7 +9,6 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <fmt/format.h>
@@ -18,6 +17,8 @@
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/box_mesh.hpp"
+#include "case_toml.hpp"
+#include "pressure_files.hpp"
 
 namespace ugs::test {
 
@@ -37,46 +38,13 @@ inline Mesh solve_box_mesh() {
   return make_box_mesh(s);
 }
 
-inline std::string toml_number(double v) { return v == std::floor(v) ? fmt::format("{:.1f}", v) : fmt::format("{}", v); }
-
 inline std::string solve_box_case(double c_R, double c_R_a = 5.0) {
-  return fmt::format(R"(# box twin for ugs-calibrate with ugs-solve
-crs = "EPSG:32632"
-
-[initial_stress]
-surface_elevation_m = 0.0
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-k0 = 0.9
-
-[[material]]
-name = "surrounding_rock"
-law = "elastic"
-nu_z = 0.3
-
-[[material]]
-name = "pool_c"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = {}
-
-[[material]]
-name = "pool_a"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = {}
-
-[boundary]
-fixed = ["bottom", "west", "east", "south", "north"]
-
-[output]
-dates = ["2013-05-01", "2013-11-01", "2014-05-01"]
-)",
-                     toml_number(c_R), toml_number(c_R_a));
+  testcase::CaseToml c("# box twin for ugs-calibrate with ugs-solve\ncrs = \"EPSG:32632\"\n\n", testcase::Numbers::Decimal);
+  c.initial_stress({.surface_elevation_m = 0, .k0 = 0.9});
+  c.material({.name = "surrounding_rock", .law = "elastic", .nu_z = 0.3});
+  c.material(testcase::hypoplastic("pool_c", c_R)).material(testcase::hypoplastic("pool_a", c_R_a));
+  c.boundary(testcase::fixed_sides()).table("output", "dates = [\"2013-05-01\", \"2013-11-01\", \"2014-05-01\"]\n");
+  return c.str();
 }
 
 // A pool's pressure change [MPa] at a date (pool 0: Pool C, 1: Pool A).
@@ -103,44 +71,20 @@ inline std::vector<std::int64_t> solve_box_dates() {
 
 // The sub-mesh of a material with its pressure history, parent node and element tags kept.
 inline void write_pool_dp(const Mesh& mesh, const std::string& material, int pool_index, const std::string& path) {
-  Mesh sub;
-  std::unordered_map<std::uint32_t, std::uint32_t> local;
-  const PhysicalGroup* pool = mesh.find_physical(3, "mat:" + material);
-  for (const auto& b : mesh.blocks) {
-    if (b.type != ElementType::Tetrahedron) continue;
-    const Entity* e = mesh.find_entity(3, b.entity_tag);
-    if (!e || e->physicals.empty() || e->physicals.front() != pool->tag) continue;
-    auto& sb = sub.block(3, sub.entity_for_physical(3, "mat:" + material), ElementType::Tetrahedron);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      std::uint32_t n[4];
-      for (int k = 0; k < 4; ++k) {
-        const auto g = b.element(i)[k];
-        auto [it, fresh] = local.emplace(g, 0);
-        if (fresh) it->second = sub.add_node(mesh.nodes[g], mesh.node_tags[g]);
-        n[k] = it->second;
-      }
-      sub.add_element(sb, n, b.tags[i]);
-    }
-  }
-  FieldSeriesWriter w(path, sub);
+  testcase::Series s;
+  std::vector<double> dp_Pa;
   for (auto t : solve_box_dates()) {
-    const Field dp{"dp", 1, std::vector<double>(sub.num_nodes(), solve_box_dp_MPa(pool_index, t) * 1e6)};
-    const Field fs[] = {dp};
-    w.add_step(format_iso_date(t), double(t), fs);
+    s.dates.push_back(format_iso_date(t));
+    dp_Pa.push_back(solve_box_dp_MPa(pool_index, t) * 1e6);
   }
-  w.commit();
+  testcase::write_pressure(path, testcase::submesh(mesh, {material}), testcase::uniform_series(s.dates, dp_Pa));
 }
 
 // Writes model.msh, case.toml (c_R of Pool C and Pool A), dp_c.h5 and dp_a.h5 into `dir`.
 inline void write_solve_box(const std::filesystem::path& dir, double c_R, double c_R_a = 5.0) {
   const Mesh mesh = solve_box_mesh();
   write_msh(mesh, (dir / "model.msh").string());
-  {
-    std::FILE* f = std::fopen((dir / "case.toml").c_str(), "w");
-    const std::string t = solve_box_case(c_R, c_R_a);
-    std::fwrite(t.data(), 1, t.size(), f);
-    std::fclose(f);
-  }
+  testcase::write_text(dir / "case.toml", solve_box_case(c_R, c_R_a));
   write_pool_dp(mesh, "pool_c", 0, (dir / "dp_c.h5").string());
   write_pool_dp(mesh, "pool_a", 1, (dir / "dp_a.h5").string());
 }

@@ -18,10 +18,12 @@
 
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/box_mesh.hpp"
-#include "layered_case.hpp"
+#include "case_toml.hpp"
+#include "layered_model.hpp"
+#include "pressure_files.hpp"
 
 using namespace ugs;
-using namespace ugs::cases;
+using namespace ugs::testcase;
 namespace fs = std::filesystem;
 
 namespace {
@@ -35,32 +37,13 @@ void make_column(const fs::path& dir, const std::string& rule) {
   spec.z = linspace(-d20 - H / 2, -d20 + H / 2, 4);
   const Mesh m = make_box_mesh(spec);
   write_msh(m, (dir / "mesh.msh").string());
-  write_text(dir / "case.toml", fmt::format(R"(# V1: oedometer column, sigma'_v0 = 20 MPa at its centre (VERIFICATION.md)
-[initial_stress]
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-
-[[material]]
-name = "rock"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 3.0
-
-[boundary]
-fixed = ["bottom"]
-rollers = ["west", "east", "south", "north"]
-free = ["top"]
-
-[solver]
-inversion_rule = "{}"
-)", rule));
-  Series s;
-  s.dates = {"2000-01-01", "2001-01-01", "2002-01-01", "2003-01-01", "2004-01-01"};
-  const double dp[] = {0, -6e6, -3e6, -8e6, -5e6};
-  s.dp = [&](const Point3&, std::size_t k) { return dp[k]; };
-  write_pressure(dir / "flow.h5", m, s);
+  CaseToml c("# V1: oedometer column, sigma'_v0 = 20 MPa at its centre (VERIFICATION.md)\n", Numbers::Decimal);
+  c.initial_stress({}).material(hypoplastic("rock", 3));
+  c.boundary({.fixed = {"bottom"}, .rollers = {"west", "east", "south", "north"}, .free = {"top"}});
+  write_text(dir / "case.toml", c.table("solver", fmt::format("inversion_rule = \"{}\"\n", rule)).str());
+  write_pressure(dir / "flow.h5", m,
+                 uniform_series({"2000-01-01", "2001-01-01", "2002-01-01", "2003-01-01", "2004-01-01"},
+                                {0, -6e6, -3e6, -8e6, -5e6}));
 }
 
 // ---- V2 Geertsma ------------------------------------------------------------------------------
@@ -88,29 +71,13 @@ void make_geertsma(const fs::path& dir, double refine) {
   };
   const Mesh m = make_box_mesh(spec);
   write_msh(m, (dir / "mesh.msh").string());
-  write_text(dir / "case.toml", R"(# V2: Geertsma disk (D = R = 1500 m, h = 50 m, dp = -10 MPa, E = 10 GPa, nu = 0.25).
-# Quarter domain: rollers on the symmetry planes x = 0 (west) and y = 0 (south).
-[[material]]
-name = "rock"
-law = "linear"
-E_MPa = 10000
-nu = 0.25
-
-[[material]]
-name = "reservoir"
-law = "linear"
-E_MPa = 10000
-nu = 0.25
-
-[boundary]
-fixed = ["bottom", "east", "north"]
-rollers = ["west", "south"]
-free = ["top"]
-)");
-  Series s;
-  s.dates = {"2000-01-01", "2001-01-01"};
-  s.dp = [](const Point3&, std::size_t k) { return k == 0 ? 0.0 : -10e6; };
-  write_pressure(dir / "flow.h5", submesh(m, {"reservoir"}), s);
+  CaseToml c(
+      "# V2: Geertsma disk (D = R = 1500 m, h = 50 m, dp = -10 MPa, E = 10 GPa, nu = 0.25).\n"
+      "# Quarter domain: rollers on the symmetry planes x = 0 (west) and y = 0 (south).\n");
+  c.material(linear("rock", 10000, 0.25)).material(linear("reservoir", 10000, 0.25));
+  c.boundary({.fixed = {"bottom", "east", "north"}, .rollers = {"west", "south"}, .free = {"top"}});
+  write_text(dir / "case.toml", c.str());
+  write_pressure(dir / "flow.h5", submesh(m, {"reservoir"}), uniform_series({"2000-01-01", "2001-01-01"}, {0.0, -10e6}));
   std::fprintf(stderr, "geertsma: %zu nodes, %zu tetrahedra\n", m.num_nodes(), m.count(ElementType::Tetrahedron));
 }
 
@@ -124,17 +91,9 @@ void make_small(const fs::path& dir, double refine) {
   spec.material = [&](const Point3& c) { return material_of(L, c); };
   const Mesh m = make_box_mesh(spec);
   write_msh(m, (dir / "mesh.msh").string());
-  write_text(dir / "case.toml", layered_case(R"(
-[[pool]]
-name = "Pool A"
-materials = ["pool_a"]
-aquifer_materials = ["aquifer_a"]
-schedule = "unused.csv"
-column = "p_MPa"
-
-[output]
-dates = ["1960-03-01", "1960-09-01"]
-)"));
+  CaseToml c = layered_case();
+  c.pool({.name = "Pool A", .materials = {"pool_a"}, .aquifer_materials = {"aquifer_a"}, .schedule = "unused.csv"});
+  write_text(dir / "case.toml", c.table("output", "dates = [\"1960-03-01\", \"1960-09-01\"]\n").str());
   // Monthly through the end of production and into the first cycle: load inversions.
   write_pools(dir, m, L, monthly(1959, 10, 1960, 9), 1950, 15e6);
   std::fprintf(stderr, "small: %zu nodes, %zu tetrahedra\n", m.num_nodes(), m.count(ElementType::Tetrahedron));

@@ -14,6 +14,7 @@
 
 #include "meshing_checks.hpp"
 #include "run_tool.hpp"
+#include "strata_toml.hpp"
 #include "ugs/formats/msh.hpp"
 
 namespace fs = std::filesystem;
@@ -22,27 +23,14 @@ using namespace ugs::test;
 
 namespace {
 
-const char* kStrata = R"(crs = "EPSG:32632"
-faults = "faults.geojson"
-[[surface]]
-name = "Ground"
-constant = 0.0
-[[surface]]
-name = "Top B"
-constant = -800.0
-[[surface]]
-name = "Bottom"
-constant = -3000.0
-[[unit]]
-name = "A"
-layers = 4
-[[unit]]
-name = "B"
-layers = 6
-[[material]]
-name = "rock"
-units = ["A", "B"]
-)";
+const std::string kStrata = testcase::StrataToml("crs = \"EPSG:32632\"\nfaults = \"faults.geojson\"\n", testcase::Layout::Compact)
+                                .surface({.name = "Ground", .constant = 0})
+                                .surface({.name = "Top B", .constant = -800})
+                                .surface({.name = "Bottom", .constant = -3000})
+                                .unit({.name = "A", .layers = 4})
+                                .unit({.name = "B", .layers = 6})
+                                .material({.name = "rock", .units = {"A", "B"}})
+                                .str();
 
 std::string feature(const std::string& props, const std::string& coords) {
   return fmt::format(R"({{ "type": "Feature", "properties": {{ {} }}, "geometry": {{ "type": "LineString", "coordinates": {} }} }})",

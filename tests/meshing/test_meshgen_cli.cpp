@@ -16,6 +16,7 @@
 #include "geo_fixtures.hpp"
 #include "meshing_checks.hpp"
 #include "run_tool.hpp"
+#include "strata_toml.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/layered_mesh.hpp"
 #include "ugs/meshing/plan.hpp"
@@ -32,62 +33,20 @@ double top_c(double x, double y) { return -600 + 0.02 * (x - X0); }
 double base_c_raw(double x, double y) { return top_c(x, y) - 0.05 * (x - 683000); }  // above top_c west of 683 km
 constexpr double BOTTOM = -3000;
 
-const char* kStrata = R"(crs = "EPSG:32632"
-min_thickness = 0.5
-faults = "faults.geojson"
-
-[[surface]]
-name = "DEM"
-raster = "dem.tif"
-
-[[surface]]
-name = "Base A"
-raster = "base_a.tif"
-
-[[surface]]
-name = "Top C"
-picks = "top_c.csv"
-unconformity = true
-
-[[surface]]
-name = "Base C"
-raster = "base_c.tif"
-
-[[surface]]
-name = "Bottom"
-constant = -3000.0
-
-[[unit]]
-name = "Cover"
-layers = 2
-
-[[unit]]
-name = "Shale"
-layers = 3
-bias = 1.5
-
-[[unit]]
-name = "Sand C"
-layers = 4
-
-[[unit]]
-name = "Basement"
-layers = 2
-
-[[material]]
-name = "reservoir"
-units = ["Sand C"]
-polygon = "reservoir.geojson"
-where = "name = 'res'"
-
-[[material]]
-name = "aquifer"
-units = ["Sand C"]
-
-[[material]]
-name = "rock"
-units = ["Cover", "Shale", "Basement"]
-)";
+const std::string kStrata = testcase::StrataToml("crs = \"EPSG:32632\"\nmin_thickness = 0.5\nfaults = \"faults.geojson\"\n\n")
+                                .surface({.name = "DEM", .raster = "dem.tif"})
+                                .surface({.name = "Base A", .raster = "base_a.tif"})
+                                .surface({.name = "Top C", .picks = "top_c.csv", .unconformity = true})
+                                .surface({.name = "Base C", .raster = "base_c.tif"})
+                                .surface({.name = "Bottom", .constant = BOTTOM})
+                                .unit({.name = "Cover", .layers = 2})
+                                .unit({.name = "Shale", .layers = 3, .bias = 1.5})
+                                .unit({.name = "Sand C", .layers = 4})
+                                .unit({.name = "Basement", .layers = 2})
+                                .material({.name = "reservoir", .units = {"Sand C"}, .polygon = "reservoir.geojson", .where = "name = 'res'"})
+                                .material({.name = "aquifer", .units = {"Sand C"}})
+                                .material({.name = "rock", .units = {"Cover", "Shale", "Basement"}})
+                                .str();
 
 std::string strata_text() { return kStrata; }
 

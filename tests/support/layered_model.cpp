@@ -1,14 +1,13 @@
-#include "layered_case.hpp"
+#include "layered_model.hpp"
 
 #include <cmath>
-#include <fstream>
 
 #include <fmt/format.h>
 
 #include "ugs/formats/csv.hpp"
-#include "ugs/formats/fields.hpp"
+#include "pressure_files.hpp"
 
-namespace ugs::cases {
+namespace ugs::testcase {
 namespace fs = std::filesystem;
 namespace {
 
@@ -37,100 +36,12 @@ double years_since(const std::string& d, int y0) {
 
 }  // namespace
 
-Mesh submesh(const Mesh& m, const std::vector<std::string>& materials) {
-  Mesh s;
-  std::vector<std::int64_t> local(m.num_nodes(), -1);
-  for (const auto& b : m.blocks) {
-    if (b.type != ElementType::Tetrahedron) continue;
-    const std::string name = m.physical_name_of(b.entity_dim, b.entity_tag);
-    bool keep = false;
-    for (const auto& mat : materials) keep = keep || name == "mat:" + mat;
-    if (!keep) continue;
-    const int e = s.entity_for_physical(3, name);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      std::uint32_t n[4];
-      const auto el = b.element(i);
-      for (int k = 0; k < 4; ++k) {
-        if (local[el[k]] < 0) local[el[k]] = s.add_node(m.nodes[el[k]], m.node_tags[el[k]]);
-        n[k] = static_cast<std::uint32_t>(local[el[k]]);
-      }
-      s.add_element(s.block(3, e, ElementType::Tetrahedron), n, b.tags[i]);
-    }
-  }
-  s.update_entity_bboxes();
-  return s;
-}
-
-void write_pressure(const fs::path& path, const Mesh& sub, const Series& s) {
-  FieldSeriesWriter w(path.string(), sub);
-  for (std::size_t k = 0; k < s.dates.size(); ++k) {
-    Field f{"dp", 1, std::vector<double>(sub.num_nodes())};
-    for (std::size_t v = 0; v < sub.num_nodes(); ++v) f.values[v] = s.dp(sub.nodes[v], k);
-    const Field nodes[] = {f};
-    w.add_step(s.dates[k], static_cast<double>(*parse_iso_date(s.dates[k])), nodes);
-  }
-  w.commit();
-}
-
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream f(p);
-  f << text;
-}
-
-std::vector<std::string> monthly(int y0, int m0, int y1, int m1) {
-  std::vector<std::string> d;
-  for (int y = y0, m = m0; y < y1 || (y == y1 && m <= m1);) {
-    d.push_back(fmt::format("{:04d}-{:02d}-01", y, m));
-    if (++m == 13) m = 1, ++y;
-  }
-  return d;
-}
-
-std::string layered_case(const std::string& extra) {
-  return R"(# Layered test model: elastic rock, two hypo-plastic pools with aquifers.
-[initial_stress]
-surface_elevation_m = 0
-lithostatic_gradient_MPa_per_m = 0.0226
-hydrostatic_gradient_MPa_per_m = 0.0100
-k0 = 0.9
-
-[[material]]
-name = "rock"
-law = "elastic"
-nu = 0.3
-
-[[material]]
-name = "pool_a"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 5
-
-[[material]]
-name = "aquifer_a"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 5
-
-[[material]]
-name = "pool_c"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 3
-
-[[material]]
-name = "aquifer_c"
-law = "hypoplastic"
-nu_z = 0.3
-Eh_over_Ez = 3.0
-nuh_over_nuz = 0.2
-c_R = 3
-)" + extra;
+CaseToml layered_case() {
+  CaseToml c("# Layered test model: elastic rock, two hypo-plastic pools with aquifers.\n");
+  c.initial_stress({.surface_elevation_m = 0, .k0 = 0.9}).material(elastic("rock", 0.3));
+  c.material(hypoplastic("pool_a", 5)).material(hypoplastic("aquifer_a", 5));
+  c.material(hypoplastic("pool_c", 3)).material(hypoplastic("aquifer_c", 3));
+  return c;
 }
 
 std::string material_of(const Layered& L, const Point3& c) {
@@ -158,4 +69,4 @@ void write_pools(const fs::path& dir, const Mesh& m, const Layered& L, const std
   write_pressure(dir / "flow_pool_c.h5", submesh(m, {"pool_c", "aquifer_c"}), c);
 }
 
-}  // namespace ugs::cases
+}  // namespace ugs::testcase

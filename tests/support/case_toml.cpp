@@ -1,0 +1,102 @@
+#include "case_toml.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include <fmt/format.h>
+
+namespace ugs::testcase {
+namespace {
+
+// Four decimals where they hold the value exactly (0.0100), else the shortest form (0.00981).
+std::string gradient(double v) {
+  const std::string four = fmt::format("{:.4f}", v);
+  return std::stod(four) == v ? four : fmt::format("{}", v);
+}
+
+}  // namespace
+
+Material linear(const std::string& name, double E_MPa, double nu) { return {.name = name, .law = "linear", .E_MPa = E_MPa, .nu = nu}; }
+
+Material elastic(const std::string& name, double nu) { return {.name = name, .law = "elastic", .nu = nu}; }
+
+Material hypoplastic(const std::string& name, double c_R) {
+  return {.name = name, .law = "hypoplastic", .thesis_anisotropy = true, .c_R = c_R};
+}
+
+Boundary fixed_sides() { return {{"bottom", "west", "east", "south", "north"}, {}, {}}; }
+
+std::string string_list(const std::vector<std::string>& items) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? ", \"" : "\"") + items[i] + "\"";
+  return s + "]";
+}
+
+void write_text(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream f(p);
+  f << text;
+}
+
+std::string toml_number(double v, Numbers numbers) {
+  if (numbers == Numbers::Decimal && std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) return fmt::format("{:.1f}", v);
+  return fmt::format("{}", v);
+}
+
+void TomlSections::section(const std::string& header) {
+  if (!first_ && layout_ == Layout::Spaced) text_ += "\n";
+  first_ = false;
+  text_ += header + "\n";
+}
+
+CaseToml& CaseToml::initial_stress(const InitialStress& s) {
+  section("[initial_stress]");
+  if (s.surface_elevation_m) add("surface_elevation_m = " + number(*s.surface_elevation_m) + "\n");
+  if (s.lithostatic_gradient_MPa_per_m) add("lithostatic_gradient_MPa_per_m = " + gradient(*s.lithostatic_gradient_MPa_per_m) + "\n");
+  if (s.hydrostatic_gradient_MPa_per_m) add("hydrostatic_gradient_MPa_per_m = " + gradient(*s.hydrostatic_gradient_MPa_per_m) + "\n");
+  if (s.k0) add("k0 = " + number(*s.k0) + "\n");
+  return *this;
+}
+
+CaseToml& CaseToml::material(const Material& m) {
+  section("[[material]]");
+  add("name = \"" + m.name + "\"\n");
+  if (!m.law.empty()) add("law = \"" + m.law + "\"\n");
+  if (m.E_MPa) add("E_MPa = " + number(*m.E_MPa) + "\n");
+  if (m.nu) add("nu = " + number(*m.nu) + "\n");
+  if (m.nu_z) add("nu_z = " + number(*m.nu_z) + "\n");
+  if (m.thesis_anisotropy) add("nu_z = 0.3\nEh_over_Ez = 3.0\nnuh_over_nuz = 0.2\n");
+  if (m.c_R) add("c_R = " + number(*m.c_R) + "\n");
+  add(m.more);
+  return *this;
+}
+
+CaseToml& CaseToml::boundary(const Boundary& b) {
+  section("[boundary]");
+  if (!b.fixed.empty()) add("fixed = " + string_list(b.fixed) + "\n");
+  if (!b.rollers.empty()) add("rollers = " + string_list(b.rollers) + "\n");
+  if (!b.free.empty()) add("free = " + string_list(b.free) + "\n");
+  return *this;
+}
+
+CaseToml& CaseToml::fault(const Fault& f) {
+  section("[[fault]]");
+  add("name = \"" + f.name + "\"\ncohesion_MPa = " + number(f.cohesion_MPa) + "\nfriction_deg = " + number(f.friction_deg) + "\n");
+  return *this;
+}
+
+CaseToml& CaseToml::pool(const Pool& p) {
+  section("[[pool]]");
+  add("name = \"" + p.name + "\"\nmaterials = " + string_list(p.materials) + "\n");
+  if (!p.aquifer_materials.empty()) add("aquifer_materials = " + string_list(p.aquifer_materials) + "\n");
+  add("schedule = \"" + p.schedule + "\"\ncolumn = \"" + p.column + "\"\n");
+  add(p.more);
+  return *this;
+}
+
+CaseToml& CaseToml::table(const std::string& name, const std::string& lines) {
+  section("[" + name + "]");
+  add(lines);
+  return *this;
+}
+
+}  // namespace ugs::testcase
