@@ -44,3 +44,16 @@ install: build
 
 clean:
 	rm -rf $(BUILD) build-asan
+
+# The suites labelled numerics (tests/*/CMakeLists.txt) under three OpenBLAS kernels: a tolerance that
+# holds on one CPU's floating-point path only fails here rather than on a user's machine (issue 39;
+# docs/cli.md, Determinism). Debian's OpenBLAS is built with DYNAMIC_ARCH, so OPENBLAS_CORETYPE picks
+# the kernel; "native" unsets it (a caller's environment may force one). About 12 min on a loaded
+# 2-core machine (735 s at load 13-15, the Sobol' e2e run ~4 min of each pass): not part of `make test`.
+.PHONY: test-numerics-portability
+test-numerics-portability: build
+	for core in Prescott Haswell native; do \
+	  echo "== OpenBLAS kernel: $$core"; \
+	  if [ $$core = native ]; then run="env -u OPENBLAS_CORETYPE"; else run="env OPENBLAS_CORETYPE=$$core"; fi; \
+	  (cd $(BUILD) && $$run ctest --output-on-failure -j $(JOBS) -L numerics) || exit 1; \
+	done

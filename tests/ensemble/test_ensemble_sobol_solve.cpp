@@ -8,7 +8,7 @@
 // A metric that depends on one parameter only has S1 = ST = 1 for it and 0 for the others. Martinez'
 // estimator (S1_i = corr(y_B, y_Ei), ST_i = 1 - corr(y_A, y_Ei), E_i = A with column i from B) gives
 // exactly ST = 0 for the unused parameter (its block E_i repeats A's runs bit for bit) and S1 = 1 for
-// c_R (E_i repeats B's), while S1 of the others and ST of c_R carry the design's sampling noise
+// c_R (E_i repeats B's) to the last bits of a correlation, while S1 of the others and ST of c_R carry the design's sampling noise
 // corr(y_A, y_B), of order 1 / sqrt(N): with N = 8 base points it is not small, so those are asserted
 // through their 95 % intervals and the identity S1(unused) + ST(c_R) = 1 of the estimator.
 // 40 members + the truth run: about 63 s CPU (load 5: 147 s wall). Skipped when ugs-solve is not built.
@@ -78,12 +78,21 @@ TEST(EnsembleSobolSolve, UnusedParameterGetsZeroAndReloadingCompressibilityDecid
     const std::string k(m);
     const Index c = ix.at(k + "|material.pool_c.c_R"), a = ix.at(k + "|material.pool_a.c_R"),
                 tol = ix.at(k + "|scenario.scale_tolerance");
-    std::printf("%s: c_R(C) S1 %.7f ST %.4f [%.4f, %.4f]; c_R(A) S1 %.4f ST %.3g; tolerance S1 %.4f [%.4f, %.4f] ST %.3g\n", m,
-                c.s1, c.st, c.st_low, c.st_high, a.s1, a.st, tol.s1, tol.s1_low, tol.s1_high, tol.st);
-    // No influence: ST exactly 0 (to rounding), S1 inside an interval containing 0.
+    std::printf("%s: c_R(C) S1 %.7f ST %.4f [%.4f, %.4f]; c_R(A) S1 %.4f ST %.3g; tolerance S1 %.4f [%.4f, %.4f] ST %.3g [%.3g, %.3g]\n",
+                m, c.s1, c.st, c.st_low, c.st_high, a.s1, a.st, tol.s1, tol.s1_low, tol.s1_high, tol.st, tol.st_low, tol.st_high);
+    // No influence: ST = 1 - corr(y_A, y_E) with y_E = y_A bit for bit (E_tol repeats A's runs on this
+    // machine, asserted above), so ST is 0 to the last bits of that correlation on any machine. Its
+    // asymptotic interval is not: its half-width is 1.96 x the square root of a variance that is
+    // itself made of round-off (~1e-16 in the members' metrics), of order 1e-8, and which value it
+    // takes depends on the CPU's BLAS kernels, the compiler and the library builds (issue 39: 2.2e-9
+    // on another machine). What holds everywhere: the interval contains 0 (to ST's own 1e-12) and is
+    // orders of magnitude narrower than the c_R intervals (~1), here below 1e-6.
     EXPECT_LT(std::abs(tol.st), 1e-12) << m;
-    EXPECT_LT(std::abs(tol.st_low), 1e-12) << m;
-    EXPECT_LT(std::abs(tol.st_high), 1e-12) << m;
+    EXPECT_LE(tol.st_low, tol.st) << m;
+    EXPECT_GE(tol.st_high, tol.st) << m;
+    EXPECT_LE(tol.st_low, 1e-12) << m;
+    EXPECT_GE(tol.st_high, -1e-12) << m;
+    EXPECT_LT(tol.st_high - tol.st_low, 1e-6) << m;
     EXPECT_LE(tol.s1_low, 0.0) << m;
     EXPECT_GE(tol.s1_high, 0.0) << m;
     // c_R of Pool C decides: S1 = 1 but for Pool A's share, ST's interval contains 1, and it has the largest ST.

@@ -80,9 +80,12 @@ TEST(SaddleGuess, ExactWhenTheSolutionLiesInTheSpan) {
   VecDuplicate(vs, &b);
   MatMult(J, vs, b);
   const double rel = g.form(J, b, x);
-  EXPECT_LT(rel, 1e-12);
+  // The projection solves normal equations (Gram matrix of J x_j, PETSc's dot products and Eigen's
+  // eigensolver): their round-off is eps x cond(Y)^2 (~1e-14 here) and its last bits depend on the
+  // BLAS kernels and the compiler; 1e-10 leaves room for that and still fails any real error.
+  EXPECT_LT(rel, 1e-10);
   const std::vector<double> got = values(x);
-  for (int i = 0; i < kN; ++i) EXPECT_NEAR(got[i], xs[i], 1e-12);
+  for (int i = 0; i < kN; ++i) EXPECT_NEAR(got[i], xs[i], 1e-10);
   // A right-hand side partly outside the span: the ratio is that of the returned iterate.
   VecSetValue(b, 5, 10.0, ADD_VALUES);
   VecAssemblyBegin(b);
@@ -97,7 +100,7 @@ TEST(SaddleGuess, ExactWhenTheSolutionLiesInTheSpan) {
   VecNorm(b, NORM_2, &bn);
   EXPECT_GT(rel2, 0.01);
   EXPECT_LT(rel2, 1.0);
-  EXPECT_NEAR(rel2, rn / bn, 1e-12);
+  EXPECT_NEAR(rel2, rn / bn, 1e-10);  // two residual norms of O(1) values: round-off, as above
   for (Vec* v : {&v1, &v2, &vs, &b, &x, &r}) VecDestroy(v);
   MatDestroy(&J);
 }
@@ -114,7 +117,7 @@ TEST(SaddleGuess, KeepsTheLastEightAndFallsBackToZero) {
   Vec e8 = vec(unit(SaddleGuess::kKeep)), b8, x8 = vec(std::vector<double>(kN, 0.0));
   VecDuplicate(e8, &b8);
   MatMult(J, e8, b8);
-  EXPECT_LT(g.form(J, b8, x8), 1e-12);
+  EXPECT_LT(g.form(J, b8, x8), 1e-10);  // exact but for the normal equations' round-off (above)
   Vec e0 = vec(unit(0)), b, x = vec(std::vector<double>(kN, 0.0));
   VecDuplicate(e0, &b);
   MatMult(J, e0, b);
