@@ -19,22 +19,24 @@
 #include <limits>
 #include <set>
 
+#include "ugs/calibration/evaluator.hpp"
+#include "ugs/calibration/optimizer.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/csv.hpp"
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/crs.hpp"
-#include "ugs/insar/evaluator.hpp"
 #include "ugs/insar/inputs.hpp"
-#include "ugs/insar/optimizer.hpp"
-#include "ugs/insar/output_folder.hpp"
 #include "ugs/insar/ps_data.hpp"
 #include "ugs/insar/sampling.hpp"
 #include "ugs/meshing/geodata.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/output_folder.hpp"
 
 namespace {
 
 using namespace ugs;
 using namespace ugs::insar;
+using namespace ugs::runner;
+using namespace ugs::calibration;
 namespace fs = std::filesystem;
 
 struct Options {

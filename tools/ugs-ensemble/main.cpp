@@ -20,10 +20,10 @@
 #include "ugs/ensemble/members.hpp"
 #include "ugs/ensemble/spec.hpp"
 #include "ugs/formats/io.hpp"
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/inputs.hpp"
-#include "ugs/insar/output_folder.hpp"
-#include "ugs/insar/subprocess.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/output_folder.hpp"
+#include "ugs/runner/subprocess.hpp"
 
 namespace {
 
@@ -53,9 +53,9 @@ std::string command_for(const Options& o, const std::string& mode) {
   std::error_code ec;
   const auto exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) self = exe.string();
-  std::string c = insar::shell_quote(self) + " " + mode;
+  std::string c = runner::shell_quote(self) + " " + mode;
   auto add = [&](const std::string& flag, const std::string& v, bool path) {
-    if (!v.empty()) c += " " + flag + " " + insar::shell_quote(path ? absolute(v) : v);
+    if (!v.empty()) c += " " + flag + " " + runner::shell_quote(path ? absolute(v) : v);
   };
   add("--spec", o.spec, true);
   add("--case", o.case_file, true);
@@ -107,9 +107,9 @@ void run(const Options& o, const cli::Tool& tool) {
   // 1. Every input checked before anything runs: the ensemble file, its paths against the case
   // (numbers there, and a valid case at each parameter's ends), the command, the metric options.
   const EnsembleSpec spec = read_spec(o.spec);
-  const insar::CaseTemplate tmpl(o.case_file);
+  const runner::CaseTemplate tmpl(o.case_file);
   check_against_case(spec, tmpl);
-  insar::check_command_template(o.solver_command, !o.mesh.empty());
+  runner::check_command_template(o.solver_command, !o.mesh.empty());
   const MetricOptions metrics = metric_options(o);
   Design design = make_design(spec);
   if (o.member > design.x.size())
@@ -124,7 +124,7 @@ void run(const Options& o, const cli::Tool& tool) {
     Options same = o;
     same.cache_dir = cache;
     const std::string member = command_for(same, "run");
-    const std::string collect_cmd = command_for(same, "collect") + " -o " + insar::shell_quote(absolute(o.output) + ".out");
+    const std::string collect_cmd = command_for(same, "collect") + " -o " + runner::shell_quote(absolute(o.output) + ".out");
     OutputFile f(o.output);
     f.write(o.emit == Emit::make ? makefile(members, member, collect_cmd) : slurm_script(members, member, collect_cmd));
     f.commit();
@@ -151,7 +151,7 @@ void run(const Options& o, const cli::Tool& tool) {
   }
 
   // 4. Collect: metrics and statistics into the output folder, all at once.
-  insar::OutputFolder out(o.output);
+  runner::OutputFolder out(o.output);
   const CollectSummary sum = collect(spec, members, metrics, out.temp().string(), {tool.command_line()});
   out.commit();
   for (const auto& [k, e] : sum.failures) cli::warning("member {} excluded from the statistics: {}", k, e);

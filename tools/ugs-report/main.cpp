@@ -28,10 +28,10 @@
 #include "ugs/formats/msh.hpp"
 #include "ugs/insar/crs.hpp"
 #include "ugs/insar/inputs.hpp"
-#include "ugs/insar/output_folder.hpp"
 #include "ugs/insar/sampling.hpp"
-#include "ugs/insar/subprocess.hpp"
 #include "ugs/meshing/geodata.hpp"
+#include "ugs/runner/output_folder.hpp"
+#include "ugs/runner/subprocess.hpp"
 
 namespace {
 
@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
     if (c.measured_up && o.samples.empty()) insar::require_some_on_surface(*c.top, *c.measured_up);
 
     // 2. The data of every figure, into the work folder.
-    insar::OutputFolder out(output);
+    runner::OutputFolder out(output);
     c.out = fs::absolute(out.temp()).string();
     c.work = c.out + "/work";
     fs::create_directories(c.work);
@@ -246,11 +246,11 @@ int main(int argc, char** argv) {
     const std::string script = find_plots_script();
     cli::detail("drawing {} figures with {} {}", c.figures.size(), python, script);
     fs::create_directories(c.work + "/mpl");
-    const auto r = insar::run_command({python, script, "work/manifest.json"}, c.out, c.work_file("plots.log"),
+    const auto r = runner::run_command({python, script, "work/manifest.json"}, c.out, c.work_file("plots.log"),
                                       {{"MPLBACKEND", "Agg"}, {"MPLCONFIGDIR", c.work + "/mpl"}, {"PYTHONHASHSEED", "0"},
                                        {"SOURCE_DATE_EPOCH", "0"}});
     if (r.exit_code != 0)
-      throw ComputeError(fmt::format("plots.py failed (exit code {}): {}", r.exit_code, insar::last_line(c.work_file("plots.log"))));
+      throw ComputeError(fmt::format("plots.py failed (exit code {}): {}", r.exit_code, runner::last_line(c.work_file("plots.log"))));
     for (const auto& f : c.figures)
       if (!fs::exists(c.out + "/" + f.png)) throw ComputeError(fmt::format("plots.py did not write {}", f.png));
 
