@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/ensemble/collect.hpp"
 #include "ugs/ensemble/members.hpp"
@@ -180,9 +181,9 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--mesh", o.mesh, "Mesh ({mesh} in the command)");
   app.add_option("--cache-dir", o.cache_dir, "Cache of members (default: <output>.cache)");
-  app.add_option("-j,--jobs", o.jobs, "Members run at once")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("-j,--jobs", o.jobs, "Members run at once")->capture_default_str()->check(cli::number_in(1, 256));
   app.add_option("--member", o.member, "Run only member K (1-based; what --emit's jobs run), no collect")
-      ->check(CLI::Range(1, 10'000'000));
+      ->check(cli::number_in(1, 10'000'000));
   app.add_option("--emit", emit, "Write the members as a Makefile (make) or Slurm array script (slurm) to -o instead of running")
       ->check(CLI::IsMember({"make", "slurm"}));
   app.add_option("--phase", o.phases, "NAME=START/END: uplift and settlement over this phase (repeat; default: the whole run)");
@@ -190,7 +191,9 @@ int main(int argc, char** argv) {
   app.add_option("--inside-where", o.inside_where, "OGR attribute filter on the --inside polygons");
   app.add_option("--measured", o.measured, "PS points (EGMS CSV, CSV or OGR): metrics at them, and the InSAR misfit if they have series");
   app.add_option("--measured-east", o.measured_east, "East-west series of the --measured points, added to the misfit with --east-weight");
-  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")->capture_default_str();
+  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")
+      ->capture_default_str()
+      ->check(cli::number_in(0, cli::kNoLimit));
   app.add_option("--window", o.window, "Dates of the misfit, START/END (ISO; either may be empty)");
   app.add_option("--points-crs", o.points_crs, "CRS of the PS coordinates (default: EPSG:3035 for EGMS)");
   app.add_option("--crs", o.crs, "Model CRS (default: the case file's crs)");
@@ -215,7 +218,6 @@ int main(int argc, char** argv) {
     if (o.output == "-") throw InputError("-o", "an output folder (or file for --emit) is needed, not stdout");
     if (!o.measured_east.empty() && o.measured.empty())
       throw InputError("--measured-east", "needs the PS points of --measured (the east series adds to their misfit)");
-    insar::check_option("--east-weight", o.east_weight, 0, std::numeric_limits<double>::max());
     run(o, tool);
   });
 }
