@@ -527,7 +527,7 @@ INSTANTIATE_TEST_SUITE_P(
                               "inversion_rule = \"sigma-max\"\ntolerance = 1e-20", "[solver] tolerance = 1e-20: outside [1e-14, 1)"},
                       BadCase{"newton_iterations_huge", "inversion_rule = \"sigma-max\"",
                               "inversion_rule = \"sigma-max\"\nmax_newton_iterations = 1000000",
-                              "[solver] max_newton_iterations = 1000000: more than 1000"}),
+                              "[solver] max_newton_iterations = 1000000: outside [1, 1000]"}),
     [](const auto& info) { return info.param.name; });
 
 // The problems on ugs-solve's one error line, each without the folder that starts it (every problem
@@ -561,7 +561,7 @@ TEST(SolveTool, EverySolverSettingProblemIsReportedAtOnce) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   // In the order of their lines (21-24 of bad.toml).
   const char* expected[] = {"bad.toml:21: [solver] tolerance = 1: outside [1e-14, 1)",
-                            "bad.toml:22: [solver] max_newton_iterations = 5000: more than 1000",
+                            "bad.toml:22: [solver] max_newton_iterations = 5000: outside [1, 1000]",
                             "bad.toml:23: [solver] linear_solver = \"lu\": must be one of cg-hypre, cg-gamg, mumps, cholmod",
                             "bad.toml:24: [solver] fault_solver = \"x\": must be one of auto, mumps, fieldsplit"};
   const auto problems = problems_on_the_error_line(r.err, d.path.string() + "/");
