@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include <fmt/format.h>
@@ -377,6 +378,57 @@ void read_faults(const TomlTable& root, CaseFile& c, const Collect& ok) {
   for (const auto& t : faults) c.faults.push_back(parse_fault(t, ok));
 }
 
+// The numbers of [solver], each with the range ugs-solve can use and why, checked here and nowhere
+// else: "case.toml:21: [solver] tolerance = 1: outside [1e-14, 1) (a relative residual ...)".
+// Integers are checked before they are narrowed to int (2^32 + 1 would read as 1).
+struct SolverNumber {
+  const char* key;
+  double fallback, lo, hi;  // hi = infinity: no upper limit
+  bool lo_open, hi_open, integer;
+  const char* why;
+};
+constexpr double kNoUpper = std::numeric_limits<double>::infinity();
+constexpr SolverNumber kSolverNumbers[] = {
+    // A tolerance of 1 or more accepts the first iterate of every step (no equilibrium, exit 0);
+    // one below 1e-14 is beyond double precision (every step would fail after all its sub-steps).
+    {"tolerance", 1e-8, 1e-14, 1, false, true, false, "a relative residual ||r|| / ||r_0||"},
+    // 10^9 Newton iterations per sub-step never end.
+    {"max_newton_iterations", 25, 1, 1000, false, false, true, "a step takes 2-25"},
+    {"max_substeps", 64, 1, 4096, false, false, true, "sub-steps of a step that does not converge whole"},
+    {"turning_point_tolerance_MPa", 1e-2, 0, kNoUpper, true, false, false, "a pressure change in MPa"},
+};
+
+void read_solver_numbers(const TomlTable& s, CaseFile& c, const Collect& ok) {
+  for (const SolverNumber& n : kSolverNumbers) {
+    double v = n.fallback;
+    std::string text;
+    const bool read = ok([&] {
+      if (n.integer) {
+        const long long i = s.integer_opt(n.key).value_or(static_cast<long long>(n.fallback));
+        v = static_cast<double>(i);
+        text = fmt::format("{}", i);
+      } else {
+        v = s.number_or(n.key, n.fallback);
+        text = fmt::format("{}", v);
+      }
+    });
+    if (!read) continue;
+    const bool in = std::isfinite(v) && (n.lo_open ? v > n.lo : v >= n.lo) && (n.hi_open ? v < n.hi : v <= n.hi);
+    if (!in) {
+      const std::string range = n.hi == kNoUpper ? fmt::format("must be {} {}", n.lo_open ? ">" : ">=", n.lo)
+                                                 : fmt::format("outside {}{}, {}{}", n.lo_open ? "(" : "[", n.lo, n.hi,
+                                                               n.hi_open ? ")" : "]");
+      ok.errors.add(s.where(n.key), fmt::format("[solver] {} = {}: {} ({})", n.key, text, range, n.why));
+      continue;
+    }
+    const std::string key = n.key;
+    if (key == "tolerance") c.newton_tolerance = v;
+    else if (key == "max_newton_iterations") c.max_newton_iterations = static_cast<int>(v);
+    else if (key == "max_substeps") c.max_substeps = static_cast<int>(v);
+    else c.turning_point_tolerance = 1e6 * v;
+  }
+}
+
 void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
   std::optional<TomlTable> s;
   ok([&] { s = root.table_opt("solver"); });
@@ -384,10 +436,9 @@ void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
   s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
                      "reuse_preconditioner", "fault_solver", "steps", "turning_point_tolerance_MPa"},
                     ok.errors);
-  for (const char* key : {"tolerance", "max_newton_iterations", "linear_solver", "fault_solver"})
+  for (const char* key : {"linear_solver", "fault_solver"})
     if (s->has(key)) c.key_lines[std::string("solver.") + key] = s->where(key);
-  ok([&] { c.newton_tolerance = positive(*s, "tolerance", s->number_or("tolerance", 1e-8)); });
-  ok([&] { c.max_newton_iterations = integer_in(*s, "max_newton_iterations", 25, 1, 1000000000); });  // (ugs-solve: at most 1000)
+  read_solver_numbers(*s, c, ok);
   // The names are checked by the solver libraries that own them (ugs/mechanics/case_section.hpp).
   ok([&] { c.linear_solver = s->string_opt("linear_solver").value_or("cg-hypre"); });
   const bool rule_read = ok([&] {
@@ -396,7 +447,6 @@ void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
       throw s->error("inversion_rule", "must be one of sigma-max, sigma-inversion, stress-dependent");
     c.inversion_rule = rule;
   });
-  ok([&] { c.max_substeps = integer_in(*s, "max_substeps", 64, 1, 4096); });
   ok([&] { c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true); });
   ok([&] {
     const std::string steps = s->string_opt("steps").value_or("every-date");
@@ -404,10 +454,6 @@ void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
     c.steps = steps;
     if (rule_read && c.steps == "turning-points" && c.inversion_rule != "sigma-max")
       throw s->error("steps", "turning-points needs inversion_rule = \"sigma-max\" (the other rules depend on the whole path)");
-  });
-  ok([&] {
-    c.turning_point_tolerance =
-        1e6 * positive(*s, "turning_point_tolerance_MPa", s->number_or("turning_point_tolerance_MPa", 1e-2));
   });
   ok([&] { c.fault_solver = s->string_opt("fault_solver").value_or("auto"); });  // checked by ugs/contact/case_section.hpp
 }

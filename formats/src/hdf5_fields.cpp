@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -725,6 +726,11 @@ std::vector<std::uint64_t> FieldSeriesReader::node_tags() const {
 std::vector<Point3> FieldSeriesReader::coordinates() const {
   h5::QuietErrors quiet;
   const std::vector<double> flat = impl_->read<double>("/mesh/coordinates", H5T_NATIVE_DOUBLE);
+  static const char* kAxis[3] = {"x", "y", "z"};
+  for (std::size_t i = 0; i < flat.size(); ++i)
+    if (!std::isfinite(flat[i]))
+      throw InputError(impl_->path, fmt::format("/mesh/coordinates: node {} has {} = {} (expected finite coordinates)", i / 3,
+                                                kAxis[i % 3], flat[i]));
   std::vector<Point3> x(flat.size() / 3);
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
   return x;
@@ -733,7 +739,16 @@ std::vector<Point3> FieldSeriesReader::coordinates() const {
 std::vector<std::uint32_t> FieldSeriesReader::cells(ElementType type) const {
   if (std::find(impl_->types.begin(), impl_->types.end(), type) == impl_->types.end()) return {};
   h5::QuietErrors quiet;
-  return impl_->read<std::uint32_t>(fmt::format("/mesh/{}", dataset_name(type)), H5T_NATIVE_UINT32);
+  const std::string name = dataset_name(type);
+  std::vector<std::uint32_t> c = impl_->read<std::uint32_t>("/mesh/" + name, H5T_NATIVE_UINT32);
+  // The shape (cells x nodes per cell) was checked when the file was opened; the values are
+  // node indices that every caller indexes the coordinates and node fields with.
+  const std::size_t npe = static_cast<std::size_t>(nodes_per_element(type));
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c[i] >= impl_->num_nodes)
+      throw InputError(impl_->path, fmt::format("/mesh/{}: cell {} has node index {} (expected below the {} nodes of "
+                                                "/mesh/coordinates)", name, i / npe, c[i], impl_->num_nodes));
+  return c;
 }
 
 std::vector<std::uint64_t> FieldSeriesReader::cell_tags() const {

@@ -60,11 +60,31 @@ TEST(CaseFile, NonPhysicalValuesAreRefused) {
   EXPECT_NE(error_of("[[fault]]\nname = \"f\"\ncohesion_MPa = -1\n").find("must not be negative"), std::string::npos);
   EXPECT_NE(error_of("[boundary]\nfixed = [\"wes\"]\n").find("unknown boundary 'wes'"), std::string::npos);
   // Integers are checked before they are narrowed to int: 2^32 + 1 was read as 1.
-  EXPECT_NE(error_of("[solver]\nmax_newton_iterations = 4294967297\n").find("must lie in [1, 1000000000], got 4294967297"),
+  EXPECT_NE(error_of("[solver]\nmax_newton_iterations = 4294967297\n").find("max_newton_iterations = 4294967297: outside [1, 1000]"),
             std::string::npos);
-  EXPECT_NE(error_of("[solver]\nmax_substeps = 4294967297\n").find("must lie in [1, 4096], got 4294967297"), std::string::npos);
+  EXPECT_NE(error_of("[solver]\nmax_substeps = 4294967297\n").find("max_substeps = 4294967297: outside [1, 4096]"), std::string::npos);
   EXPECT_NE(error_of("[output]\ncheckpoint_every = -4294967295\n").find("must lie in [0, 1000000], got -4294967295"),
             std::string::npos);
+}
+
+// Every number of [solver] is range-checked in one place, where the case is read: file:line, the
+// key, the value, the range and what the number is; all of them at once.
+TEST(CaseFile, SolverNumbersOutOfRangeNameFileLineAndKey) {
+  auto tail = [](const std::string& e) { return e.substr(e.find("c.toml:")); };
+  EXPECT_EQ(tail(error_of("[solver]\ntolerance = 1\n")),
+            "c.toml:2: [solver] tolerance = 1: outside [1e-14, 1) (a relative residual ||r|| / ||r_0||)");
+  EXPECT_EQ(tail(error_of("[solver]\nmax_newton_iterations = 0\n")),
+            "c.toml:2: [solver] max_newton_iterations = 0: outside [1, 1000] (a step takes 2-25)");
+  EXPECT_EQ(tail(error_of("[solver]\nmax_substeps = 4097\n")),
+            "c.toml:2: [solver] max_substeps = 4097: outside [1, 4096] (sub-steps of a step that does not converge whole)");
+  EXPECT_EQ(tail(error_of("[solver]\nturning_point_tolerance_MPa = -0.5\n")),
+            "c.toml:2: [solver] turning_point_tolerance_MPa = -0.5: must be > 0 (a pressure change in MPa)");
+  const std::string all = error_of("[solver]\ntolerance = 1e-20\nmax_newton_iterations = 5000\nmax_substeps = 0\n");
+  EXPECT_NE(all.find("c.toml:2: [solver] tolerance = 1e-20: outside [1e-14, 1)"), std::string::npos) << all;
+  EXPECT_NE(all.find("c.toml:3: [solver] max_newton_iterations = 5000: outside [1, 1000]"), std::string::npos) << all;
+  EXPECT_NE(all.find("c.toml:4: [solver] max_substeps = 0: outside [1, 4096]"), std::string::npos) << all;
+  // At the edges of the ranges the values are taken.
+  EXPECT_EQ(error_of("[solver]\ntolerance = 1e-14\nmax_newton_iterations = 1000\nmax_substeps = 1\n"), "no error");
 }
 
 TEST(CaseFile, SyntaxErrorNamesTheLine) {

@@ -13,9 +13,9 @@
 #include "ensemble_box.hpp"
 #include "ugs/ensemble/metrics.hpp"
 #include "ugs/formats/csv.hpp"
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/inputs.hpp"
 #include "ugs/insar/ps_data.hpp"
+#include "ugs/runner/case_params.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
@@ -86,7 +86,7 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   // 2. A member equals a single ugs-solve run with its parameters, bit for bit.
   const CsvTable mem = CsvTable::read((dir / "out" / "members.csv").string());
   ASSERT_EQ(mem.rows(), 9u);
-  const insar::CaseTemplate tmpl((dir / "case.toml").string());
+  const runner::CaseTemplate tmpl((dir / "case.toml").string());
   const double c_R = mem.number(0, mem.column("material.pool_c.c_R")), tol = mem.number(0, mem.column("scenario.scale_tolerance"));
   fs::create_directories(dir / "single");
   test::spit(dir / "single" / "case.toml", tmpl.render({{"material.pool_c.c_R", c_R}, {"scenario.scale_tolerance", tol}}));

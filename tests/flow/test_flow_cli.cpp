@@ -350,8 +350,9 @@ TEST(FlowCli, NonFiniteAndOutOfRangeNumbers) {
 // everywhere with exit 0; --max-step inf overflowed to a negative step).
 TEST(FlowCli, NonFiniteOptionsAreRefused) {
   const Case c = make_case("nf-opts");
-  expect_bad_input(c, test::run(c.flow("-o dp.h5 --reference-pressure inf")), "--reference-pressure", "got inf");
-  expect_bad_input(c, test::run(c.flow("-o dp.h5 --reference-pressure nan")), "--reference-pressure", "got nan");
-  expect_bad_input(c, test::run(c.flow("-o dp.h5 --max-step inf")), "--max-step", "must be a number of days in (0, 36525], got inf");
-  expect_bad_input(c, test::run(c.flow("-o dp.h5 --calibrate-tolerance nan")), "--calibrate-tolerance", "got nan");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --reference-pressure inf")), "--reference-pressure", "inf (expected a finite number >= 0)");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --reference-pressure nan")), "--reference-pressure", "nan (expected a finite number >= 0)");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --max-step inf")), "--max-step", "inf (expected a finite number in (0, 36525])");
+  expect_bad_input(c, test::run(c.flow("-o dp.h5 --calibrate-tolerance nan")), "--calibrate-tolerance",
+                   "nan (expected a finite number in (0, 1))");
 }

@@ -20,6 +20,9 @@
 
 #include <cstring>
 #include <functional>
+#include <limits>
+
+#include <fmt/format.h>
 
 #include "input_error.hpp"
 #include "sample_fields.hpp"
@@ -77,6 +80,23 @@ std::vector<std::uint32_t> connectivity(const Mesh& m, ElementType t) {
   return r;
 }
 
+
+// Overwrites value `i` of a dataset in place, as a damaged or hand-made file would hold it.
+template <class T>
+void poke_dataset(const std::string& file, const char* name, hid_t mem, std::size_t i, T value) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0) << file;
+  const hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+  ASSERT_GE(d, 0) << name;
+  const hid_t space = H5Dget_space(d);
+  std::vector<T> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  ASSERT_GE(H5Dread(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  v.at(i) = value;
+  ASSERT_GE(H5Dwrite(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+}
 
 shared_ptr<XdmfDomain> read_xdmf(const fs::path& p) {
   shared_ptr<XdmfReader> reader = XdmfReader::New();
@@ -467,6 +487,28 @@ TEST(UGS_FIELDS_SUITE, ReaderRefusesWhatTheMeshDoesNotBound) {
   add_unwritten_dataset(huge, "/mesh/node_tags", {nodes}, H5T_STD_U64LE);
   EXPECT_EQ(test::input_error_of([&] { FieldSeriesReader x(huge); }),
             huge + ": /mesh/coordinates claims 3221225472 values but stores only 0 bytes (damaged file?)");
+  fs::remove_all(dir);
+}
+
+// Every node index of the cells and every coordinate is checked by the reader itself, so no caller
+// indexes with a damaged value: a node index past the nodes and a NaN coordinate are one line each,
+// naming the file and the dataset.
+TEST(UGS_FIELDS_SUITE, ReaderRefusesABadNodeIndexAndANonFiniteCoordinate) {
+  const auto dir = test::temp_dir("fields-values");
+  const Mesh m = test::faulted_cube_mesh();
+  const std::string index = (dir / "index.h5").string(), coord = (dir / "coord.h5").string();
+  write_series(index, m);
+  write_series(coord, m);
+  poke_dataset(index, "/mesh/tetrahedra", H5T_NATIVE_UINT32, 5, std::uint32_t{4294967295u});
+  poke_dataset(coord, "/mesh/coordinates", H5T_NATIVE_DOUBLE, 4, std::numeric_limits<double>::quiet_NaN());
+  FieldSeriesReader ri(index), rc(coord);
+  EXPECT_EQ(test::input_error_of([&] { ri.cells(ElementType::Tetrahedron); }),
+            fmt::format("{}: /mesh/tetrahedra: cell 1 has node index 4294967295 (expected below the {} nodes of "
+                        "/mesh/coordinates)", index, m.num_nodes()));
+  EXPECT_EQ(ri.coordinates(), m.nodes);  // the other datasets still read
+  EXPECT_EQ(test::input_error_of([&] { rc.coordinates(); }),
+            coord + ": /mesh/coordinates: node 1 has y = nan (expected finite coordinates)");
+  EXPECT_EQ(rc.cells(ElementType::Tetrahedron), connectivity(m, ElementType::Tetrahedron));
   fs::remove_all(dir);
 }
 

@@ -13,7 +13,7 @@ add_link_options(-fsanitize=address,undefined)
 # ugs_formats and ugs_fields_serial as in the normal build (only what a target links is built).
 add_subdirectory(formats)
 
-# The readers of meshing/, solver/flow and analysis/insar with exactly the sources they reach
+# The readers of meshing/, solver/flow, analysis/insar and analysis/runner with exactly the sources they reach
 # (strata -> natural neighbours, surface stack, fault traces; ps_data -> crs; case_params -> the
 # case file of ugs_formats).
 set(_m ${PROJECT_SOURCE_DIR}/meshing/src)
@@ -22,12 +22,13 @@ add_library(ugs_fuzz_readers STATIC
   ${_m}/fault_traces.cpp ${_m}/fault_traces_ogr.cpp ${_m}/geodata.cpp ${_m}/plan_inputs.cpp ${_m}/horizon_grids.cpp
   ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
   ${PROJECT_SOURCE_DIR}/analysis/insar/src/ps_data.cpp ${PROJECT_SOURCE_DIR}/analysis/insar/src/crs.cpp
-  ${PROJECT_SOURCE_DIR}/analysis/insar/src/case_params.cpp)
+  ${PROJECT_SOURCE_DIR}/analysis/runner/src/case_params.cpp)
 get_target_property(_ugs_gdal_includes GDAL::GDAL INTERFACE_INCLUDE_DIRECTORIES)
 target_include_directories(ugs_fuzz_readers SYSTEM PUBLIC ${_ugs_gdal_includes} ${GMSH_INCLUDE_DIR})
 target_include_directories(ugs_fuzz_readers PUBLIC
   ${PROJECT_SOURCE_DIR}/meshing/include ${PROJECT_SOURCE_DIR}/solver/include
-  ${PROJECT_SOURCE_DIR}/solver/flow/include ${PROJECT_SOURCE_DIR}/analysis/insar/include)
+  ${PROJECT_SOURCE_DIR}/solver/flow/include ${PROJECT_SOURCE_DIR}/analysis/insar/include
+  ${PROJECT_SOURCE_DIR}/analysis/runner/include)
 target_link_libraries(ugs_fuzz_readers PUBLIC ugs_formats GDAL::GDAL PRIVATE CGAL::CGAL Eigen3::Eigen)
 
 # The ensemble file and its designs (analysis/ensemble: spec, design, morris; OpenTURNS from Debian,

@@ -11,8 +11,8 @@
 #include "run_tool.hpp"
 #include "twin_data.hpp"
 #include "ugs/formats/csv.hpp"
-#include "ugs/insar/case_params.hpp"
-#include "ugs/insar/subprocess.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/subprocess.hpp"
 
 using namespace ugs;
 namespace fs = std::filesystem;
@@ -39,7 +39,7 @@ name = "pool_a"
 law = "hypoplastic"
 c_R = {}   # the truth is 5
 )",
-                     insar::toml_float(crc), insar::toml_float(cra));
+                     runner::toml_float(crc), runner::toml_float(cra));
 }
 
 const std::vector<test::TwinPoint> kPoints = {

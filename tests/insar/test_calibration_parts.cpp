@@ -7,16 +7,18 @@
 
 #include "input_error.hpp"
 #include "run_tool.hpp"
+#include "ugs/calibration/optimizer.hpp"
 #include "ugs/formats/case_file.hpp"
 #include "ugs/formats/error.hpp"
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/inputs.hpp"
 #include "ugs/insar/misfit.hpp"
-#include "ugs/insar/optimizer.hpp"
-#include "ugs/insar/solver_runs.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/solver_runs.hpp"
 
 using namespace ugs;
 using namespace ugs::insar;
+using namespace ugs::runner;
+using namespace ugs::calibration;
 
 namespace {
 const std::string kCase = std::string(UGS_SOURCE_DIR) + "/data-samples/po-plain/case.toml";
@@ -174,7 +176,7 @@ TEST(Brent, FindsTheMinimumOfAParabolaAndOfAnAsymmetricFunction) {
 // Library messages name the settings in words; each tool's main maps them to its flags
 // (Tool::name_setting; CalibrateCli.BadInputs checks the tool's line).
 TEST(SolverCommand, ErrorsNameTheSettingInWordsNotAFlag) {
-  using ugs::insar::check_command_template;
+  using ugs::runner::check_command_template;
   const auto message = [](const std::string& cmd, bool have_mesh) {
     try {
       check_command_template(cmd, have_mesh);

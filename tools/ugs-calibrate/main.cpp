@@ -19,22 +19,25 @@
 #include <limits>
 #include <set>
 
+#include "ugs/calibration/evaluator.hpp"
+#include "ugs/calibration/optimizer.hpp"
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/csv.hpp"
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/crs.hpp"
-#include "ugs/insar/evaluator.hpp"
 #include "ugs/insar/inputs.hpp"
-#include "ugs/insar/optimizer.hpp"
-#include "ugs/insar/output_folder.hpp"
 #include "ugs/insar/ps_data.hpp"
 #include "ugs/insar/sampling.hpp"
 #include "ugs/meshing/geodata.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/output_folder.hpp"
 
 namespace {
 
 using namespace ugs;
 using namespace ugs::insar;
+using namespace ugs::runner;
+using namespace ugs::calibration;
 namespace fs = std::filesystem;
 
 struct Options {
@@ -76,7 +79,9 @@ int main(int argc, char** argv) {
   app.add_option("--top-group", o.top_group, "Surface group of the top in the mesh")->capture_default_str();
   app.add_option("--measured", o.measured, "Measured vertical series: EGMS CSV (or CSV with YYYYMMDD columns), mm")->required();
   app.add_option("--measured-east", o.measured_east, "Measured east-west series, added to the misfit with --east-weight");
-  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")->capture_default_str();
+  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")
+      ->capture_default_str()
+      ->check(cli::number_in(0, cli::kNoLimit));
   app.add_option("--points", o.points, "PS ids used in the misfit (comma-separated; default: all)")->delimiter(',');
   app.add_option("--inside", o.inside, "Use only the PS inside these polygons (any OGR file, e.g. the reservoir trace)");
   app.add_option("--inside-where", o.inside_where, "OGR attribute filter on the --inside polygons, e.g. \"name = 'Pool C'\"");
@@ -86,12 +91,14 @@ int main(int argc, char** argv) {
   app.add_option("--id-column", o.id_column, "Column holding the PS id (default: pid)");
   app.add_option("--field", o.field, "Displacement node field in the results (default: u, or u_mm)");
   app.add_option("--cache-dir", o.cache_dir, "Cache of evaluations (default: <output>.cache)");
-  app.add_option("-j,--jobs", o.jobs, "Evaluations run at once")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("-j,--jobs", o.jobs, "Evaluations run at once")->capture_default_str()->check(cli::number_in(1, 256));
   app.add_flag("--keep-results", o.keep_results, "Keep each evaluation's results file in the cache");
   app.add_option("--scan", o.scan, "Grid values per parameter before refining (default 5 for one parameter, 3 for more; 0: none)")
-      ->check(CLI::Range(0, 100000));
-  app.add_option("--xtol", o.xtol, "Stop when steps are below this fraction of each range")->capture_default_str();
-  app.add_option("--max-evals", o.max_evals, "Evaluation budget (scan included)")->capture_default_str()->check(CLI::Range(1, 100000));
+      ->check(cli::number_in(0, 100000));
+  app.add_option("--xtol", o.xtol, "Stop when steps are below this fraction of each range")
+      ->capture_default_str()
+      ->check(cli::number_in(0, 1, cli::Ends::OpenLow));
+  app.add_option("--max-evals", o.max_evals, "Evaluation budget (scan included)")->capture_default_str()->check(cli::number_in(1, 100000));
   std::string& output = tool.add_output("calibration", "Output folder");
   // The library names these settings in words; the messages show the flags.
   tool.name_setting("solver command", "--solver-command");
@@ -108,8 +115,6 @@ int main(int argc, char** argv) {
   return tool.run(argc, argv, [&] {
     // 1. Numeric options, then the parameters: every path must exist in the case, and both bounds
     // must give a valid case.
-    check_option("--east-weight", o.east_weight, 0, std::numeric_limits<double>::max());
-    check_option("--xtol", o.xtol, 0, 1, true);
     check_command_template(o.solver_command, !o.mesh.empty());
     const CaseTemplate tmpl(o.case_file);
     std::vector<ParameterSpec> params;

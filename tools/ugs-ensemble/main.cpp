@@ -15,16 +15,17 @@
 
 #include <fmt/format.h>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/case_file.hpp"
 #include "ugs/ensemble/collect.hpp"
 #include "ugs/ensemble/members.hpp"
 #include "ugs/ensemble/spec.hpp"
 #include "ugs/formats/io.hpp"
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/inputs.hpp"
-#include "ugs/insar/output_folder.hpp"
-#include "ugs/insar/subprocess.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/output_folder.hpp"
+#include "ugs/runner/subprocess.hpp"
 
 namespace {
 
@@ -54,9 +55,9 @@ std::string command_for(const Options& o, const std::string& mode) {
   std::error_code ec;
   const auto exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) self = exe.string();
-  std::string c = insar::shell_quote(self) + " " + mode;
+  std::string c = runner::shell_quote(self) + " " + mode;
   auto add = [&](const std::string& flag, const std::string& v, bool path) {
-    if (!v.empty()) c += " " + flag + " " + insar::shell_quote(path ? absolute(v) : v);
+    if (!v.empty()) c += " " + flag + " " + runner::shell_quote(path ? absolute(v) : v);
   };
   add("--spec", o.spec, true);
   add("--case", o.case_file, true);
@@ -118,9 +119,9 @@ void run(const Options& o, const cli::Tool& tool) {
   // 1. Every input checked before anything runs: the ensemble file, its paths against the case
   // (numbers there, and a valid case at each parameter's ends), the command, the metric options.
   const EnsembleSpec spec = read_spec(o.spec);
-  const insar::CaseTemplate tmpl(o.case_file);
+  const runner::CaseTemplate tmpl(o.case_file);
   check_against_case(spec, tmpl);
-  insar::check_command_template(o.solver_command, !o.mesh.empty());
+  runner::check_command_template(o.solver_command, !o.mesh.empty());
   const MetricOptions metrics = metric_options(o);
   Design design = make_design(spec);
   if (o.member > design.x.size())
@@ -135,7 +136,7 @@ void run(const Options& o, const cli::Tool& tool) {
     Options same = o;
     same.cache_dir = cache;
     const std::string member = command_for(same, "run");
-    const std::string collect_cmd = command_for(same, "collect") + " -o " + insar::shell_quote(absolute(o.output) + ".out");
+    const std::string collect_cmd = command_for(same, "collect") + " -o " + runner::shell_quote(absolute(o.output) + ".out");
     OutputFile f(o.output);
     f.write(o.emit == Emit::make ? makefile(members, member, collect_cmd) : slurm_script(members, member, collect_cmd));
     f.commit();
@@ -162,7 +163,7 @@ void run(const Options& o, const cli::Tool& tool) {
   }
 
   // 4. Collect: metrics and statistics into the output folder, all at once.
-  insar::OutputFolder out(o.output);
+  runner::OutputFolder out(o.output);
   const CollectSummary sum = collect(spec, members, metrics, out.temp().string(), {tool.command_line()});
   out.commit();
   for (const auto& [k, e] : sum.failures) cli::warning("member {} excluded from the statistics: {}", k, e);
@@ -191,9 +192,9 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--mesh", o.mesh, "Mesh ({mesh} in the command)");
   app.add_option("--cache-dir", o.cache_dir, "Cache of members (default: <output>.cache)");
-  app.add_option("-j,--jobs", o.jobs, "Members run at once")->capture_default_str()->check(CLI::Range(1, 256));
+  app.add_option("-j,--jobs", o.jobs, "Members run at once")->capture_default_str()->check(cli::number_in(1, 256));
   app.add_option("--member", o.member, "Run only member K (1-based; what --emit's jobs run), no collect")
-      ->check(CLI::Range(1, 10'000'000));
+      ->check(cli::number_in(1, 10'000'000));
   app.add_option("--emit", emit, "Write the members as a Makefile (make) or Slurm array script (slurm) to -o instead of running")
       ->check(CLI::IsMember({"make", "slurm"}));
   app.add_option("--phase", o.phases, "NAME=START/END: uplift and settlement over this phase (repeat; default: the whole run)");
@@ -204,7 +205,9 @@ int main(int argc, char** argv) {
   app.add_option("--inside-where", o.inside_where, "OGR attribute filter on the --inside polygons");
   app.add_option("--measured", o.measured, "PS points (EGMS CSV, CSV or OGR): metrics at them, and the InSAR misfit if they have series");
   app.add_option("--measured-east", o.measured_east, "East-west series of the --measured points, added to the misfit with --east-weight");
-  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")->capture_default_str();
+  app.add_option("--east-weight", o.east_weight, "Weight of east-west residuals in the misfit")
+      ->capture_default_str()
+      ->check(cli::number_in(0, cli::kNoLimit));
   app.add_option("--window", o.window, "Dates of the misfit, START/END (ISO; either may be empty)");
   app.add_option("--points-crs", o.points_crs, "CRS of the PS coordinates (default: EPSG:3035 for EGMS)");
   app.add_option("--crs", o.crs, "Model CRS (default: the case file's crs)");
@@ -229,7 +232,6 @@ int main(int argc, char** argv) {
     if (o.output == "-") throw InputError("-o", "an output folder (or file for --emit) is needed, not stdout");
     if (!o.measured_east.empty() && o.measured.empty())
       throw InputError("--measured-east", "needs the PS points of --measured (the east series adds to their misfit)");
-    insar::check_option("--east-weight", o.east_weight, 0, std::numeric_limits<double>::max());
     run(o, tool);
   });
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <set>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/fault_insert.hpp"
@@ -67,19 +68,16 @@ int main(int argc, char** argv) {
                  "the mesh faces on its surface become the fault");
   app.add_option("--only", opt.only, "Insert only these faults (comma-separated names); default: all")->delimiter(',');
   app.add_option("--tolerance", opt.tolerance,
-                 "Distance (m) within which a face lies on a trace surface; default 1 % of the shortest edge at each node");
+                 "Distance (m) within which a face lies on a trace surface; default 1 % of the shortest edge at each node")
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit));
   app.add_option("--min-coverage", opt.min_coverage, "Percentage of a trace surface inside the model that mesh faces must cover")
-      ->check(CLI::Range(0.0, 100.0))
+      ->check(ugs::cli::number_in(0, 100))
       ->capture_default_str();
   app.add_option("--crs", opt.crs, "The mesh's CRS (e.g. EPSG:32632): traces in another CRS are reprojected to it");
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH instead of binary");
 
   return tool.run(argc, argv, [&] {
     using clock = std::chrono::steady_clock;
-    if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance))
-      throw ugs::InputError("--tolerance", fmt::format("must be a distance in metres, >= 0 (0: the default), got {}", opt.tolerance));
-    if (!(opt.min_coverage >= 0 && opt.min_coverage <= 100))
-      throw ugs::InputError("--min-coverage", fmt::format("must be a percentage in [0, 100], got {}", opt.min_coverage));
     auto t = clock::now();
     ugs::Mesh mesh = ugs::read_msh(opt.input);
     const std::string source = opt.input == "-" ? "<stdin>" : opt.input;

@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "async_writer.hpp"
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/flow/calibration.hpp"
 #include "ugs/flow/flow_model.hpp"
@@ -173,12 +174,6 @@ void run(const Options& o, cli::Tool& tool) {
   }
 
   // 2. Schedules and the time grid.
-  if (!(o.max_step_days > 0) || !(o.max_step_days <= 36525))
-    throw InputError("--max-step", fmt::format("must be a number of days in (0, 36525], got {}", o.max_step_days));
-  if (!(o.reference_MPa >= 0) || !std::isfinite(o.reference_MPa))
-    throw InputError("--reference-pressure", fmt::format("must be a pressure in MPa, > 0, got {}", o.reference_MPa));
-  if (!(o.calibrate_tolerance > 0 && o.calibrate_tolerance < 1))
-    throw InputError("--calibrate-tolerance", fmt::format("must lie in (0, 1), got {}", o.calibrate_tolerance));
   ScheduleLimits lim{static_cast<std::int64_t>(std::llround(o.max_step_days * 86400))};
   std::vector<PoolSchedule> schedules;
   for (const auto& p : fm.pools) {
@@ -309,18 +304,25 @@ int main(int argc, char** argv) {
   tool.add_output("dp.h5", "Pressure change per node and date, HDF5 (+ .xdmf beside it)");
   app.add_option("--influx", o.influx, "Cumulative water influx CSV (default: <output stem>_influx.csv)");
   app.add_option("--pool", o.pools, "Pool(s) to simulate (default: every pool with a material in the mesh)");
-  app.add_option("--substeps", o.substeps, "Equal sub-steps per schedule interval")->check(CLI::Range(1, 1000))->capture_default_str();
-  app.add_option("--max-step", o.max_step_days, "Longest allowed gap between schedule dates [days]")->capture_default_str();
+  app.add_option("--substeps", o.substeps, "Equal sub-steps per schedule interval")->check(cli::number_in(1, 1000))->capture_default_str();
+  app.add_option("--max-step", o.max_step_days, "Longest allowed gap between schedule dates [days]")
+      ->capture_default_str()
+      ->check(cli::number_in(0, 36525, cli::Ends::OpenLow));
   app.add_option("--end", o.end, "Stop the run at this date (schedule rows after it are ignored)");
   app.add_option("--output-dates", o.output_dates, "Write fields only at these dates (default: every schedule date)")->delimiter(',');
-  app.add_option("--reference-pressure", o.reference_MPa, "Reference pressure for dp_norm [MPa] (default: the pool's)");
+  app.add_option("--reference-pressure", o.reference_MPa, "Reference pressure for dp_norm [MPa] (default: the pool's)")
+      ->check(cli::number_in(0, cli::kNoLimit));
   app.add_option("--calibrate-k", o.calibrate, "Find the aquifer K multiplier giving this influx: TARGET_M3@DATE");
   app.add_option("--calibrate-materials", o.calibrate_materials, "Materials whose K is calibrated (default: every aquifer material)")
       ->delimiter(',');
   app.add_option("--calibrate-pool", o.calibrate_pool, "Pool whose influx is matched (needed when several)");
-  app.add_option("--calibrate-tolerance", o.calibrate_tolerance, "Relative tolerance on the matched influx")->capture_default_str();
+  app.add_option("--calibrate-tolerance", o.calibrate_tolerance, "Relative tolerance on the matched influx")
+      ->capture_default_str()
+      ->check(cli::number_in(0, 1, cli::Ends::Open));
   app.add_option("--calibration-out", o.calibration_out, "Calibrated K table (CSV; '-' = stdout)")->capture_default_str();
-  app.add_option("--factor-cache", o.cache, "Factorizations kept in memory (one per step size)")->capture_default_str();
+  app.add_option("--factor-cache", o.cache, "Factorizations kept in memory (one per step size)")
+      ->capture_default_str()
+      ->check(cli::number_in(0, 100000));
   tool.name_setting("end date", "--end");
   tool.name_setting("pool selection", "--pool");
   tool.name_setting("longest step", "--max-step");

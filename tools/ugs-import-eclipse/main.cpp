@@ -20,6 +20,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/eclipse/eclipse.hpp"
 #include "ugs/formats/case_file.hpp"
@@ -67,7 +68,8 @@ int main(int argc, char** argv) {
                  "Case file: only tetrahedra of its pools' materials and aquifer_materials take the simulator's pressure");
   app.add_option("--offset", o.offset, "dx,dy,dz [m] added to the grid's map coordinates (a local grid origin)")
       ->delimiter(',')
-      ->expected(3);
+      ->expected(3)
+      ->check(ugs::cli::number_in(-ugs::cli::kNoLimit, ugs::cli::kNoLimit));
   app.add_option("--export", o.export_results,
                  "The way back: ugs-solve results (strain, stress_change) to GRDECL keywords per active cell, written to -o");
   app.add_option("--dates", o.dates, "With --export: the output dates to write (default: all), comma-separated")->delimiter(',');
@@ -76,7 +78,6 @@ int main(int argc, char** argv) {
     ugs::Point3 offset{0, 0, 0};
     if (!o.offset.empty()) {
       for (int d = 0; d < 3; ++d) {
-        if (!std::isfinite(o.offset[d])) throw ugs::InputError("--offset", fmt::format("'{}' is not a finite number", o.offset[d]));
         offset[d] = o.offset[d];
       }
     }

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/meshing/plan_mesh.hpp"
@@ -66,10 +67,13 @@ int main(int argc, char** argv) {
                  "lines become trace:<name> (repeatable)");
   app.add_option("--fault", opt.in.fault_files, "Fault traces (lines) -> fault:<name> edges (repeatable)");
   app.add_option("--section", opt.in.section_files, "Section lines -> section:<name> edges (repeatable)");
-  app.add_option("--hmax", opt.in.hmax, "Largest element size, far from refinements (m); default: the domain's size field");
+  app.add_option("--hmax", opt.in.hmax, "Largest element size, far from refinements (m); default: the domain's size field")
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit));
   app.add_option("--grading", opt.in.grading, "Growth of the size with the distance from a refinement (m per m)")
-      ->capture_default_str();
-  app.add_option("--refine-size", opt.in.refine_size, "Target size (m) of refinement polygons without a size field");
+      ->capture_default_str()
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit, ugs::cli::Ends::OpenLow));
+  app.add_option("--refine-size", opt.in.refine_size, "Target size (m) of refinement polygons without a size field")
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit));
   app.add_option("--crs", opt.in.crs, "Model CRS (default: the first input's, else EPSG:32632)");
   app.add_option("--name-field", opt.in.name_field, "Field naming the features")->capture_default_str();
   app.add_option("--size-field", opt.in.size_field, "Field with a feature's target size (m)")->capture_default_str();
@@ -78,7 +82,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-elements", opt.max_elements,
                  "Refuse sizes whose estimated triangle count (docs/meshing.md) is above this")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit, ugs::cli::Ends::OpenLow));
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH (default: binary)");
   tool.add_output("-", "Plan mesh (MSH 4.1)");
 
@@ -104,8 +109,6 @@ int main(int argc, char** argv) {
     for (const auto& w : loaded.warnings) ugs::cli::warning("{}", tool.with_flags(w));
     loaded.spec.algorithm = opt.algorithm == "delaunay" ? 5 : opt.algorithm == "meshadapt" ? 1 : 6;
     loaded.spec.gmsh_messages = ugs::cli::verbosity() >= 2;
-    if (!(opt.max_elements > 0) || !std::isfinite(opt.max_elements))
-      throw ugs::InputError("--max-elements", fmt::format("must be a positive count, got {}", opt.max_elements));
     loaded.spec.max_triangles = opt.max_elements;
     ugs::cli::detail("estimated {:.3g} triangles (limit {:.0f})", ugs::estimate_plan_triangles(loaded.spec).triangles,
                      opt.max_elements);

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/formats/run_beside.hpp"
@@ -65,11 +66,13 @@ int main(int argc, char** argv) {
                  "Faults file (OGR) replacing the strata file's `faults`: depth ranges, and dips for dipping faults "
                  "(docs/dipping-faults.md)");
   app.add_option("--small-angle", opt.small_angle, "Report tetrahedra with a dihedral angle below this (degrees)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(ugs::cli::number_in(0, 180));
   app.add_option("--max-elements", opt.max_elements,
                  "Refuse a mesh of more tetrahedra than this (estimated before building: 3 per plan triangle and "
                  "sub-layer)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit, ugs::cli::Ends::OpenLow));
   app.add_flag("--ascii", opt.ascii, "Write ASCII MSH (default: binary)");
   tool.add_output("-", "Layered mesh (MSH 4.1)");
 
@@ -92,8 +95,6 @@ int main(int argc, char** argv) {
     // Refuse before building what would not fit in memory: 3 tetrahedra per plan triangle and sub-layer
     // (pinch-outs only remove some).
     {
-      if (!(opt.max_elements > 0) || !std::isfinite(opt.max_elements))
-        throw ugs::InputError("--max-elements", fmt::format("must be a positive count, got {}", opt.max_elements));
       double layers = 0;
       for (const auto& u : strata.units) layers += u.layers;
       const double tets = 3.0 * static_cast<double>(plan.triangles.size()) * layers;

@@ -21,7 +21,6 @@
 #include "ugs/insar/displacement.hpp"
 #include "ugs/insar/fault_results.hpp"
 #include "ugs/insar/npy.hpp"
-#include "ugs/insar/results_mesh.hpp"
 
 namespace ugs::report {
 
@@ -55,14 +54,14 @@ struct FaultNodes {
 // same definition: the horizontal direction normal to the mean normal, eastwards (northwards), from
 // the fault's westmost (southmost) node.
 std::vector<FaultNodes> read_fault_nodes(const FieldSeriesReader& r, const Mesh* mesh) {
-  const auto x = insar::checked_coordinates(r);
+  const auto x = r.coordinates();
   const auto types = r.cell_types();
   const auto mats = r.materials();
   std::map<std::int32_t, FaultNodes> by_tag;
   std::map<std::int32_t, std::map<std::uint32_t, std::uint32_t>> local;
   std::size_t offset = 0;
   for (ElementType t : types) {
-    const auto c = insar::checked_cells(r, t);
+    const auto c = r.cells(t);
     const std::size_t npe = static_cast<std::size_t>(nodes_per_element(t)), n = c.size() / npe;
     if (t == ElementType::Triangle)
       for (std::size_t i = 0; i < n; ++i) {

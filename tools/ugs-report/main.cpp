@@ -23,15 +23,16 @@
 #include <limits>
 
 #include "report.hpp"
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/insar/crs.hpp"
 #include "ugs/insar/inputs.hpp"
-#include "ugs/insar/output_folder.hpp"
 #include "ugs/insar/sampling.hpp"
-#include "ugs/insar/subprocess.hpp"
 #include "ugs/meshing/geodata.hpp"
+#include "ugs/runner/output_folder.hpp"
+#include "ugs/runner/subprocess.hpp"
 
 namespace {
 
@@ -113,8 +114,11 @@ int main(int argc, char** argv) {
                                       "forecast 2025 where the results reach them");
   app.add_option("--stress-pool", o.stress_pool, "Pool whose layer the stress pictures look at (default: Pool C)");
   app.add_option("--stress-field", o.stress_field, "Stress cell field (default: stress_change, dstress or stress)");
-  app.add_option("--reference-pressure-MPa", o.reference_pressure_MPa, "Normalisation of stress changes (default: the pool's)");
-  app.add_option("--exaggeration", o.exaggeration, "Vertical exaggeration of the sections")->capture_default_str();
+  app.add_option("--reference-pressure-MPa", o.reference_pressure_MPa, "Normalisation of stress changes (default: the pool's)")
+      ->check(cli::number_in(0, cli::kNoLimit));
+  app.add_option("--exaggeration", o.exaggeration, "Vertical exaggeration of the sections")
+      ->capture_default_str()
+      ->check(cli::number_in(0, 1e6, cli::Ends::OpenLow));
   app.add_option("--section-zrange", o.section_zrange, "ZMIN/ZMAX of the sections (default: the pool layer +- 150 m)");
   app.add_option("--compare", o.compare,
                  "LABEL=FILE (repeat): another run's top-surface series on the same mesh; the report compares the "
@@ -130,11 +134,12 @@ int main(int argc, char** argv) {
   app.add_option("--discussion", o.discussion,
                  "Markdown file: why this case's numbers differ from the thesis' (a section of the summary)")
       ->check(CLI::ExistingFile);
-  app.add_option("--raster-cell", o.raster_cell, "GeoTIFF cell size in m (default: about 400 cells across)");
+  app.add_option("--raster-cell", o.raster_cell, "GeoTIFF cell size in m (default: about 400 cells across)")
+      ->check(cli::number_in(0, cli::kNoLimit));
   app.add_option("--map-extent", o.map_extent, "XMIN/XMAX/YMIN/YMAX of the PNG maps (default: around the trace)");
   app.add_option("--python", o.python, "Python with matplotlib (default: /usr/bin/python3)");
-  app.add_option("--width", o.width, "PNG width in pixels")->capture_default_str()->check(CLI::Range(200, 8000));
-  app.add_option("--height", o.height, "PNG height in pixels")->capture_default_str()->check(CLI::Range(200, 8000));
+  app.add_option("--width", o.width, "PNG width in pixels")->capture_default_str()->check(cli::number_in(200, 8000));
+  app.add_option("--height", o.height, "PNG height in pixels")->capture_default_str()->check(cli::number_in(200, 8000));
   app.add_flag("--keep-work", o.keep_work, "Keep the CSV/NPY files handed to plots.py (work/ in the output)");
   std::string& output = tool.add_output("report", "Output folder");
   // The library names this setting in words; the messages show the flag.
@@ -143,10 +148,6 @@ int main(int argc, char** argv) {
   tool.name_setting("model CRS", "--crs");
   tool.name_setting("seismicity window", "--seismicity-window");
   return tool.run(argc, argv, [&] {
-    // Numeric options: finite and in range, before anything is read.
-    insar::check_option("--reference-pressure-MPa", o.reference_pressure_MPa, 0, std::numeric_limits<double>::max());
-    insar::check_option("--exaggeration", o.exaggeration, 0, 1e6, true);
-    insar::check_option("--raster-cell", o.raster_cell, 0, std::numeric_limits<double>::max());
     if (!o.section_zrange.empty()) {
       const auto z = insar::parse_number_list("--section-zrange", o.section_zrange, 2, "ZMIN/ZMAX");
       if (!(z[0] < z[1])) throw InputError("--section-zrange", fmt::format("'{}': ZMIN is not below ZMAX", o.section_zrange));
@@ -219,7 +220,7 @@ int main(int argc, char** argv) {
     if (c.measured_up && o.samples.empty()) insar::require_some_on_surface(*c.top, *c.measured_up);
 
     // 2. The data of every figure, into the work folder.
-    insar::OutputFolder out(output);
+    runner::OutputFolder out(output);
     c.out = fs::absolute(out.temp()).string();
     c.work = c.out + "/work";
     fs::create_directories(c.work);
@@ -257,11 +258,11 @@ int main(int argc, char** argv) {
     const std::string script = find_plots_script();
     cli::detail("drawing {} figures with {} {}", c.figures.size(), python, script);
     fs::create_directories(c.work + "/mpl");
-    const auto r = insar::run_command({python, script, "work/manifest.json"}, c.out, c.work_file("plots.log"),
+    const auto r = runner::run_command({python, script, "work/manifest.json"}, c.out, c.work_file("plots.log"),
                                       {{"MPLBACKEND", "Agg"}, {"MPLCONFIGDIR", c.work + "/mpl"}, {"PYTHONHASHSEED", "0"},
                                        {"SOURCE_DATE_EPOCH", "0"}});
     if (r.exit_code != 0)
-      throw ComputeError(fmt::format("plots.py failed (exit code {}): {}", r.exit_code, insar::last_line(c.work_file("plots.log"))));
+      throw ComputeError(fmt::format("plots.py failed (exit code {}): {}", r.exit_code, runner::last_line(c.work_file("plots.log"))));
     for (const auto& f : c.figures)
       if (!fs::exists(c.out + "/" + f.png)) throw ComputeError(fmt::format("plots.py did not write {}", f.png));
 

@@ -13,7 +13,6 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/insar/inputs.hpp"
 #include "ugs/insar/npy.hpp"
-#include "ugs/insar/results_mesh.hpp"
 #include "ugs/insar/sections.hpp"
 #include "ugs/meshing/geodata.hpp"
 
@@ -62,9 +61,9 @@ void build_stress(Context& c) {
     return;
   }
   // Tetrahedra and where their rows start among the written cells.
-  const auto x = insar::checked_coordinates(r);
+  const auto x = r.coordinates();
   const auto tags = r.node_tags();
-  const auto flat = insar::checked_cells(r, ElementType::Tetrahedron);
+  const auto flat = r.cells(ElementType::Tetrahedron);
   std::vector<insar::Tet> tets(flat.size() / 4);
   for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
   if (tets.empty()) {

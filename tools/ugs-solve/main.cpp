@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/driver/names.hpp"
 #include "ugs/driver/run.hpp"
@@ -112,7 +113,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::IsMember(names_of(partition_names())));
   app.add_option("--checkpoint-every", a.checkpoint_every, "Also save the restart state every N steps (overrides the case)")
-      ->check(CLI::Range(0, 1000000));
+      ->check(ugs::cli::number_in(0, 1000000));
   auto* g = app.add_option_group("Faults", "Meshes with interface elements (ugs-faultinsert): fault mechanics");
   g->add_option("--fault-output", a.fault_output,
                 "Fault fields at the output dates (HDF5 + XDMF; default <output>_faults.h5; 'none')");
@@ -124,7 +125,7 @@ int main(int argc, char** argv) {
   g->add_option("--fault-solver", a.fault_solver, "Saddle-point solver: auto, mumps, fieldsplit (overrides the case)")
       ->check(CLI::IsMember(names_of(fault_solver_names())));
   g->add_option("--scale", a.scale, "Scale of the pressure swing after the scenario's reference date (overrides the case)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit));
   g->add_flag("--find-safe-scale", a.find_safe_scale,
               "Search the smallest scale of the swing at which a fault patch reaches chi = 1 (maximum safe storage pressure)");
   g->add_option("--scenario-csv", a.scenario_csv, "Scales tried by --find-safe-scale (default <output>_scenario.csv)");

@@ -13,10 +13,10 @@ namespace ugs::ensemble {
 
 namespace fs = std::filesystem;
 
-EnsembleMembers::EnsembleMembers(const EnsembleSpec& spec, Design design, const insar::CaseTemplate& tmpl,
+EnsembleMembers::EnsembleMembers(const EnsembleSpec& spec, Design design, const runner::CaseTemplate& tmpl,
                                  const std::string& command, const std::string& mesh, const std::string& cache_dir)
     : spec_(spec), design_(std::move(design)) {
-  insar::SolverRunSetup s;
+  runner::SolverRunSetup s;
   s.case_template = &tmpl;
   s.command = command;
   s.mesh_path = mesh;
@@ -24,11 +24,11 @@ EnsembleMembers::EnsembleMembers(const EnsembleSpec& spec, Design design, const 
   s.key_label = "ugs-ensemble member key 1";
   s.entry_prefix = "member-";
   s.keep_results = true;
-  runs_ = std::make_unique<insar::SolverRuns>(std::move(s));
+  runs_ = std::make_unique<runner::SolverRuns>(std::move(s));
 }
 
-insar::ParameterValues EnsembleMembers::values(std::size_t k) const {
-  insar::ParameterValues v;
+runner::ParameterValues EnsembleMembers::values(std::size_t k) const {
+  runner::ParameterValues v;
   for (std::size_t i = 0; i < spec_.parameters.size(); ++i)
     for (const auto& p : spec_.parameters[i].paths) v.emplace_back(p, design_.x[k][i]);
   return v;
@@ -48,7 +48,7 @@ MemberStatus EnsembleMembers::status(std::size_t k) const {
   const fs::path err = fs::path(runs_->failed_path(s.entry)) / "error.txt";
   if (fs::exists(err)) {
     s.state = MemberState::failed;
-    std::string line = insar::read_text_file(err.string());
+    std::string line = runner::read_text_file(err.string());
     while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
     s.error = line.substr(0, line.find('\n'));
     return s;

@@ -8,7 +8,7 @@
 
 #include "ugs/ensemble/design.hpp"
 #include "ugs/formats/toml_reader.hpp"
-#include "ugs/insar/case_params.hpp"
+#include "ugs/runner/case_params.hpp"
 
 namespace ugs::ensemble {
 
@@ -205,10 +205,10 @@ EnsembleSpec read_spec(const std::string& path) {
   return s;
 }
 
-void check_against_case(const EnsembleSpec& spec, const insar::CaseTemplate& tmpl) {
-  std::vector<insar::ParameterSpec> ps;
+void check_against_case(const EnsembleSpec& spec, const runner::CaseTemplate& tmpl) {
+  std::vector<runner::ParameterSpec> ps;
   for (const auto& p : spec.parameters) {
-    insar::ParameterSpec q;
+    runner::ParameterSpec q;
     q.name = p.name;
     q.paths = p.paths;
     const Distribution& d = p.distribution;
@@ -216,7 +216,7 @@ void check_against_case(const EnsembleSpec& spec, const insar::CaseTemplate& tmp
     q.upper = d.kind == DistributionKind::uniform || d.kind == DistributionKind::triangular ? d.b : quantile(d, 1 - 1e-3);
     ps.push_back(std::move(q));
   }
-  insar::check_parameters(tmpl, ps, spec.path);
+  runner::check_parameters(tmpl, ps, spec.path);
 }
 
 }  // namespace ugs::ensemble

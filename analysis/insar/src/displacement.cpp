@@ -8,7 +8,6 @@
 
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
-#include "ugs/insar/results_mesh.hpp"
 
 namespace ugs::insar {
 
@@ -51,7 +50,7 @@ SurfaceDisplacement::SurfaceDisplacement(const std::string& h5, const TopSurface
   if (field_.size() > 3 && field_.compare(field_.size() - 3, 3, "_mm") == 0) scale_ = 1e-3;
   // Surface nodes -> results rows, by tag; their coordinates must agree (same model).
   const auto tags = reader_->node_tags();
-  const auto x = checked_coordinates(*reader_);
+  const auto x = reader_->coordinates();
   std::unordered_map<std::uint64_t, std::uint32_t> row_of;
   row_of.reserve(tags.size());
   for (std::uint32_t i = 0; i < tags.size(); ++i) row_of.emplace(tags[i], i);

@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
-#include "ugs/insar/results_mesh.hpp"
 
 namespace ugs::insar {
 
@@ -26,7 +25,7 @@ std::string fault_group_name(const Mesh* mesh, std::int32_t tag) {
 
 std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& r, std::size_t step, const Mesh* mesh,
                                      const std::string& field) {
-  const auto x = checked_coordinates(r);
+  const auto x = r.coordinates();
   const auto types = r.cell_types();
   const auto mats = r.materials();
   // Cells in output order: the fault cells are the triangles and the prisms.
@@ -34,7 +33,7 @@ std::vector<FaultChi> read_fault_chi(const FieldSeriesReader& r, std::size_t ste
   std::vector<std::size_t> row;   // output-order index of each fault cell
   std::size_t offset = 0;
   for (ElementType t : types) {
-    const auto c = checked_cells(r, t);
+    const auto c = r.cells(t);
     const int npe = nodes_per_element(t);
     const std::size_t n = c.size() / npe;
     if (t == ElementType::Triangle || t == ElementType::Prism)

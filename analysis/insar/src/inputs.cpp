@@ -21,17 +21,6 @@ std::string model_crs(const std::string& crs, const std::string& case_path) {
   return "";
 }
 
-void check_option(const std::string& option, double v, double lo, double hi, bool lo_open) {
-  const bool ok = std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi;
-  if (ok) return;
-  std::string range;
-  if (hi == std::numeric_limits<double>::max())
-    range = fmt::format("{} {}", lo_open ? ">" : ">=", lo);
-  else
-    range = fmt::format("in {}{}, {}]", lo_open ? "(" : "[", lo, hi);
-  throw InputError(option, fmt::format("{} (expected a finite number {})", v, range));
-}
-
 std::vector<double> parse_number_list(const std::string& option, const std::string& text, std::size_t count,
                                       const std::string& format) {
   std::vector<double> out;

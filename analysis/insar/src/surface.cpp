@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
-#include "ugs/insar/results_mesh.hpp"
 
 namespace ugs::insar {
 
@@ -119,15 +118,15 @@ TopSurface upward_boundary(std::span<const Point3> x, std::span<const std::uint6
 }
 
 TopSurface surface_from_results(const FieldSeriesReader& r) {
-  const auto x = checked_coordinates(r);
+  const auto x = r.coordinates();
   const auto tags = r.node_tags();
-  const auto tri = checked_cells(r, ElementType::Triangle);
+  const auto tri = r.cells(ElementType::Triangle);
   if (!tri.empty()) {
     std::vector<std::array<std::uint32_t, 3>> tris(tri.size() / 3);
     for (std::size_t i = 0; i < tris.size(); ++i) tris[i] = {tri[3 * i], tri[3 * i + 1], tri[3 * i + 2]};
     return compact(x, tags, tris, r.path() + ": triangles");
   }
-  const auto tet = checked_cells(r, ElementType::Tetrahedron);
+  const auto tet = r.cells(ElementType::Tetrahedron);
   if (tet.empty()) throw InputError(r.path(), "has neither triangles nor tetrahedra: give the mesh of the top surface");
   std::vector<std::array<std::uint32_t, 4>> tets(tet.size() / 4);
   for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = {tet[4 * i], tet[4 * i + 1], tet[4 * i + 2], tet[4 * i + 3]};

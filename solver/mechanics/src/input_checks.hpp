@@ -1,7 +1,8 @@
 // Checks of the counts, indices and values ugs-solve reads from files (pressure fields, restart
 // states), before they are used: a bad file is exit 2 with one line naming the file, the dataset
 // and the value, never an out-of-range access (issue 20: a tetrahedron holding node 4294967295 in
-// a pressure file ended in PETSc's segfault handler). Private to ugs_mechanics.
+// a pressure file ended in PETSc's segfault handler; node indices and coordinates are checked by
+// FieldSeriesReader itself). Private to ugs_mechanics.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -13,15 +14,6 @@
 #include "ugs/formats/error.hpp"
 
 namespace ugs::mech {
-
-// Every entry of a connectivity dataset (`per_cell` node indices per cell) is below `nodes`.
-inline void check_connectivity(const std::string& path, const std::string& dataset, const std::vector<std::uint32_t>& conn,
-                               int per_cell, std::size_t nodes) {
-  for (std::size_t i = 0; i < conn.size(); ++i)
-    if (conn[i] >= nodes)
-      throw InputError(path, fmt::format("{}: cell {} refers to node index {}, out of range (the file has {} nodes)", dataset,
-                                         i / per_cell, conn[i], nodes));
-}
 
 // Every value of a field is finite (and, with a bound, within [-bound, bound]).
 inline void check_finite(const std::string& path, const std::string& what, const std::vector<double>& v, int components,

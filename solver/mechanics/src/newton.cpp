@@ -24,40 +24,19 @@ Corrections corrections_in_use(Corrections chosen) {
 bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std::string& why) {
   const SolverOptions& opt = in_.opt;
   const LocalMesh& lm = in_.lm;
-  const std::vector<double>& dp_cell = in_.dp_cell;
   Coupling* const coupling = in_.coupling;
   const bool has_hyp = in_.has_hyp;
   HypoStateStore& hyp = out_.hyp;
   const Vec u = out_.u, du = out_.du;
   op_.external_force(dp_target);
-  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
-    // First tangent: the element keeps its direction unless its pressure change reverses.
-    const double d = dp_target[hyp.cells[h]] - dp_cell[hyp.cells[h]];
-    const int sd = d < 0 ? -1 : d > 0 ? +1 : 0, dir = hyp.committed[h].hypo.direction;
-    hyp.guess[h] = static_cast<std::int8_t>(sd != 0 && sd != hyp.last_ddp[h] ? -dir : dir);
-    hyp.piece[h] = 0;
-    hyp.flips[h] = 0;
-    hyp.hold[h] = fem::Hold::None;
-  }
+  first_tangents(dp_target);
   UGS_PETSC(VecCopy(u, out_.u_save));
   rep.residuals.clear();
   const double r0 = op_.residual();
   rep.residuals.push_back(1.0);
   if (r0 == 0) return true;
   double rk = r0, rprev = r0;
-  // A step is nonlinear if an element is on the virgin branch or is expected to change direction
-  // (under sigma-max only a change from virgin loading: unloading and reloading share one stiffness).
-  int nonlinear = 0;
-  for (std::size_t h = 0; h < hyp.cells.size() && !nonlinear; ++h) {
-    const fem::InversionRule rule = lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule;
-    nonlinear = (hyp.guess[h] != hyp.committed[h].hypo.direction &&
-                 (rule != fem::InversionRule::SigmaMax || hyp.committed_phase[h] == fem::LoadingPhase::Virgin)) ||
-                (hyp.guess[h] > 0 && hyp.start_sigma(static_cast<int>(h), in_.s0) >= hyp.committed[h].hypo.sigma_max * (1 - 1e-9)) ||
-                rule == fem::InversionRule::StressDependent;
-  }
-  int any_nonlinear = 0;
-  MPI_Allreduce(&nonlinear, &any_nonlinear, 1, MPI_INT, MPI_MAX, lm.comm);
-  double eta = any_nonlinear || coupling ? 1e-4 : 0.0;
+  double eta = step_is_nonlinear() || coupling ? 1e-4 : 0.0;
   // With a coupling (faults) the default stays exact: there eta is set by the contact even on a
   // linear storage month, bounded corrections took a second Newton iteration on it, and the field
   // split keeps its hierarchy only after one-solve steps (bench/faulted, thesis scale: storage
@@ -66,21 +45,7 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
   const Corrections corrections = has_hyp ? corrections_in_use(chosen) : Corrections::EisenstatWalker;
   for (int k = 1; k <= opt.max_newton; ++k) {
     op_.assemble();
-    // Inexact Newton (Eisenstat-Walker): no sharper than the nonlinearity warrants, but never
-    // looser than what reaches the target in one more iteration of a linear problem. With
-    // hypo-plastic elements, which elements are held at their knee, and on which side, is decided
-    // on the iterates, and the converged state depends on it (the response there is set-valued):
-    // with Eisenstat-Walker alone MUMPS and BoomerAMG corrections gave answers 2.6e-2 of max |u|
-    // apart on tests/fault_mechanics/test_locked_history. So no correction may leave more than
-    // kCorrectionBound x tolerance x r_0: the iterates, the held set and the answer are then those
-    // of an exact Newton within the tolerance, whatever the linear solver, its preconditioner
-    // reuse or the predictor (docs/mechanics.md "Newton corrections"); a coupling (faults) asks for
-    // exact corrections by default (above), -ugs_inexact_newton aside.
-    const double target_rtol = 0.5 * opt.tolerance * r0 / rk;
-    double rtol = std::max(target_rtol, eta);
-    if (corrections == Corrections::Exact) rtol = target_rtol;
-    if (corrections == Corrections::Bounded) rtol = std::max(target_rtol, std::min(eta, kCorrectionBound * opt.tolerance * r0 / rk));
-    rtol = std::min(0.5, rtol);
+    const double rtol = correction_rtol(corrections, eta, r0, rk);
     const int setups_before = in_.reuse.setups;
     const bool guess = !coupling && k == 1 && predictor.predict(in_.A, in_.r, du);
     LinearSolveResult s;
@@ -137,7 +102,7 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
       if (coupling) why += coupling->diagnosis();  // which faults and node pairs
       return false;
     }
-    if (rk <= opt.tolerance * r0 && (!coupling || coupling->settled())) {
+    if (converged(rk, r0)) {
       rep.off_branch = std::max(rep.off_branch, held_off_branch() / r0);
       return true;
     }
@@ -150,10 +115,7 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
       why = coupling->stalled();
       if (!why.empty()) return false;
     }
-    if (has_hyp || coupling) eta = std::min(0.1, 0.9 * (rk / rprev) * (rk / rprev));
-    // While elements still change branch the next residual is set by them, not by the accuracy
-    // of the linear solve: a sharper solve would be wasted.
-    if (moved_all > 0) eta = std::max(eta, 1e-2);
+    eta = next_forcing(eta, rk, rprev, moved_all);
   }
   int sat = hyp.saturated ? 1 : 0, any_sat = 0;
   MPI_Allreduce(&sat, &any_sat, 1, MPI_INT, MPI_MAX, lm.comm);
@@ -161,6 +123,68 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
                     any_sat ? " (the virgin compressibility law cannot absorb the strain of some elements)" : "");
   if (coupling) why += coupling->diagnosis();
   return false;
+}
+
+void Newton::first_tangents(const std::vector<double>& dp_target) {
+  HypoStateStore& hyp = out_.hyp;
+  for (std::size_t h = 0; h < hyp.cells.size(); ++h) {
+    // First tangent: the element keeps its direction unless its pressure change reverses.
+    const double d = dp_target[hyp.cells[h]] - in_.dp_cell[hyp.cells[h]];
+    const int sd = d < 0 ? -1 : d > 0 ? +1 : 0, dir = hyp.committed[h].hypo.direction;
+    hyp.guess[h] = static_cast<std::int8_t>(sd != 0 && sd != hyp.last_ddp[h] ? -dir : dir);
+    hyp.piece[h] = 0;
+    hyp.flips[h] = 0;
+    hyp.hold[h] = fem::Hold::None;
+  }
+}
+
+bool Newton::step_is_nonlinear() const {
+  const HypoStateStore& hyp = out_.hyp;
+  const LocalMesh& lm = in_.lm;
+  // A step is nonlinear if an element is on the virgin branch or is expected to change direction
+  // (under sigma-max only a change from virgin loading: unloading and reloading share one stiffness).
+  int nonlinear = 0;
+  for (std::size_t h = 0; h < hyp.cells.size() && !nonlinear; ++h) {
+    const fem::InversionRule rule = lm.materials[lm.cell_material[hyp.cells[h]]].hypo.rule;
+    nonlinear = (hyp.guess[h] != hyp.committed[h].hypo.direction &&
+                 (rule != fem::InversionRule::SigmaMax || hyp.committed_phase[h] == fem::LoadingPhase::Virgin)) ||
+                (hyp.guess[h] > 0 && hyp.start_sigma(static_cast<int>(h), in_.s0) >= hyp.committed[h].hypo.sigma_max * (1 - 1e-9)) ||
+                rule == fem::InversionRule::StressDependent;
+  }
+  int any_nonlinear = 0;
+  MPI_Allreduce(&nonlinear, &any_nonlinear, 1, MPI_INT, MPI_MAX, lm.comm);
+  return any_nonlinear != 0;
+}
+
+double Newton::correction_rtol(Corrections corrections, double eta, double r0, double rk) const {
+  const SolverOptions& opt = in_.opt;
+  // Inexact Newton (Eisenstat-Walker): no sharper than the nonlinearity warrants, but never
+  // looser than what reaches the target in one more iteration of a linear problem. With
+  // hypo-plastic elements, which elements are held at their knee, and on which side, is decided
+  // on the iterates, and the converged state depends on it (the response there is set-valued):
+  // with Eisenstat-Walker alone MUMPS and BoomerAMG corrections gave answers 2.6e-2 of max |u|
+  // apart on tests/fault_mechanics/test_locked_history. So no correction may leave more than
+  // kCorrectionBound x tolerance x r_0: the iterates, the held set and the answer are then those
+  // of an exact Newton within the tolerance, whatever the linear solver, its preconditioner
+  // reuse or the predictor (docs/mechanics.md "Newton corrections"); a coupling (faults) asks for
+  // exact corrections by default (iterate), -ugs_inexact_newton aside.
+  const double target_rtol = 0.5 * opt.tolerance * r0 / rk;
+  double rtol = std::max(target_rtol, eta);
+  if (corrections == Corrections::Exact) rtol = target_rtol;
+  if (corrections == Corrections::Bounded) rtol = std::max(target_rtol, std::min(eta, kCorrectionBound * opt.tolerance * r0 / rk));
+  return std::min(0.5, rtol);
+}
+
+bool Newton::converged(double rk, double r0) const {
+  return rk <= in_.opt.tolerance * r0 && (!in_.coupling || in_.coupling->settled());
+}
+
+double Newton::next_forcing(double eta, double rk, double rprev, long long moved_all) const {
+  if (in_.has_hyp || in_.coupling) eta = std::min(0.1, 0.9 * (rk / rprev) * (rk / rprev));
+  // While elements still change branch the next residual is set by them, not by the accuracy
+  // of the linear solve: a sharper solve would be wasted.
+  if (moved_all > 0) eta = std::max(eta, 1e-2);
+  return eta;
 }
 
 bool Newton::tangent_moved(std::size_t h, int phase_before) const {

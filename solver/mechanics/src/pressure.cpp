@@ -106,7 +106,6 @@ PressureHistory::PressureHistory(const std::vector<std::string>& paths, const Me
       // The file's own cells give each element's corners, so a mesh whose fault nodes were split
       // after the flow sub-mesh was cut (ugs-faultinsert) gets the pressure of the parent nodes.
       const auto xyz = f->reader->coordinates();
-      check_connectivity(p, "/mesh/tetrahedra", file_tets, 4, xyz.size());
       std::vector<char> is_twin(mesh.num_nodes(), 0);
       std::size_t missing = 0;
       std::uint64_t first_missing = 0;

@@ -1,6 +1,8 @@
 // The state and the pieces of the mechanics solver (ugs/mechanics/solver.hpp), shared by its source
-// files: solver.cpp (public interface, gathers), solver_setup.cpp, assembly.cpp, linear_solve.cpp,
-// step.cpp, newton.cpp and predictor.cpp (the Newton part). Private to ugs_mechanics.
+// files: solver.cpp (public interface, gathers), solver_setup.cpp, assembly.cpp, linear_solve.cpp
+// and step.cpp. Newton, the iteration of a (sub-)step, is its own part (newton.hpp, with the
+// predictor of its first correction, predictor.hpp), given what it reads and changes. Private to
+// ugs_mechanics.
 #pragma once
 
 #include "ugs/mechanics/solver.hpp"
@@ -14,6 +16,7 @@
 #include <petscksp.h>
 #include "hypre_in_place.hpp"
 #include "local_mesh.hpp"
+#include "newton.hpp"
 #include "ugs/mechanics/reuse_rule.hpp"
 #include "petsc_check.hpp"
 #include "ugs/fem/tet4.hpp"
@@ -133,134 +136,6 @@ struct PreconditionerReuse {
   PetscInt budget(bool factored, double rtol) const;
   // Records a solve's rate (iterations per decade of residual reduction).
   void record(int iterations, double reduction, bool fresh);
-};
-
-// The result of one linear solve (linear_solve.cpp).
-struct LinearSolveResult {
-  int iterations = 0;
-  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-  double reduction = 0;
-  // Why the preconditioner was set up for this solve (-ugs_newton_monitor): "" kept, "first",
-  // "branches" (elements changed stiffness), "rate" (iterations per decade), "budget" (a kept
-  // one failed and the solve was repeated).
-  const char* setup = "";
-};
-
-// Predictor of Newton's first correction (predictor.cpp). The increments of earlier steps span
-// most of a new one (the seasonal cycles repeat and the flow fields are smooth in time): the first
-// Newton correction starts from the Galerkin projection on them. The basis W is A-orthonormal
-// (W^T A W = I), so the projection du0 = W (W^T r) costs dot products only. A W is not kept (24
-// vectors of the size of u): A v is recomputed when a direction is added, A w_j when W is
-// re-orthonormalized. W is orthonormal for the matrix it was built with; when the matrix changes it
-// stays a good (no longer optimal) guess until the preconditioner is rebuilt, when W is
-// re-orthonormalized for the new matrix (refresh). The prediction is used only when it reduces the residual
-// (||r - A du0|| < ||r||); otherwise the basis is refreshed for the current matrix and the
-// projection tried again, else dropped.
-// It reads the matrix and vectors it is given and changes only du and its own basis.
-class Predictor {
- public:
-  Predictor() = default;
-  Predictor(const Predictor&) = delete;
-  Predictor& operator=(const Predictor&) = delete;
-  ~Predictor();
-  // Work vectors are laid out like u (ghosted, owned displacements); u is not written.
-  void setup(Vec u);
-  // du = W (W^T r) if it reduces the residual (returns true), else du = 0.
-  bool predict(Mat A, Vec r, Vec du);
-  // Re-orthonormalizes the basis for the current matrix A (after a preconditioner rebuild).
-  void refresh(Mat A);
-  // Adds the increment v of a converged (sub-)step (its prescribed components zero; the predictor
-  // takes it over), A-orthogonalized against the basis (the oldest direction is dropped when full).
-  void remember(Mat A, Vec v);
-  // Frees the basis (MechanicsSolver::release_linear_system: no step follows).
-  void release();
-  // The relative residual the last prediction left (-ugs_newton_monitor): -1 none tried, inf dropped.
-  double predicted() const { return predicted_; }
-
- private:
-  static constexpr int kRecycle = 24;
-  // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw_).
-  double projection_residual(Mat A, Vec r, Vec du);
-  // W <- W C in place: new direction t = sum_i coef[t][i] w_i; the directions past coef.size() go.
-  void combine_in_place(const std::vector<std::vector<PetscScalar>>& coef);
-  std::vector<Vec> basis_;  // W (A-orthonormal); A W is not kept (recomputed where needed)
-  Vec aw_ = nullptr;        // work vector: A du, A v, A w_j
-  Vec like_ = nullptr;  // u: the layout of new basis vectors (not owned)
-  double predicted_ = -1;
-};
-
-// Newton: the iteration of one (sub-)step with the knee holds (newton.cpp). It is given, by
-// reference, what it reads and what it changes, and the solver's operations it calls.
-class Newton {
- public:
-  // What Newton reads.
-  struct Reads {
-    const SolverOptions& opt;               // max_newton, tolerance
-    const LocalMesh& lm;                    // materials, ownership, communicator
-    const std::vector<fem::Tet4>& geo;      // held_off_branch's force bound
-    const std::vector<double>& s0;          // initial effective vertical stress [MPa]
-    const std::vector<double>& dp_cell;     // pressure change of the committed state
-    const bool& has_hyp;                    // some rank has hypo-plastic elements
-    Coupling* const& coupling;              // extra unknowns (fault contact) or null
-    const PreconditionerReuse& reuse;       // setups (counted in the report)
-    const Mat& A;                           // the tangent (the predictor's projection)
-    const Vec& r;                           // the residual (written by residual())
-  };
-  // What Newton changes: the hold fields of the state store (guess, piece, flips, hold,
-  // hold_dir; the trial states change through residual()), the values of u (u_save keeps the
-  // start of the (sub-)step) and of the correction du.
-  struct Changes {
-    HypoStateStore& hyp;
-    const Vec& u;
-    const Vec& u_save;
-    const Vec& du;
-  };
-  // The solver's operations Newton calls.
-  struct Operations {
-    std::function<void(const std::vector<double>&)> external_force;  // f_ext of a pressure change
-    std::function<double()> residual;     // r = f_ext - f_int(u); the trial states; returns ||r||
-    std::function<void()> assemble;       // A from the trial states
-    std::function<LinearSolveResult(double rtol, bool guess)> solve;  // A du = r
-  };
-
-  Newton(Reads reads, Changes changes, Operations ops) : in_(reads), out_(changes), op_(std::move(ops)) {}
-
-  // Iterates u towards the equilibrium with the pressure change dp_target (per local cell).
-  // Returns false (why says why) when it does not converge; rep gets the iteration counts.
-  bool iterate(const std::vector<double>& dp_target, StepReport& rep, std::string& why);
-
-  Predictor predictor;
-
- private:
-  // An element that changes branch twice within a (sub-)step sits at the knee, where its stiffness
-  // jumps by c_R (at J = 0 on the virgin curve even its lateral stress jumps): Newton would cycle.
-  // It is held on the unloading/reloading branch (the stiffer one: Newton with the softer tangent
-  // overshoots); the residual is then smooth (hypoplastic.hpp). From Newton iteration
-  // kHoldOnFirstChangeFrom on, one change is enough: on large meshes a tail of elements near the
-  // pressure front (J ~ 0) changes branch once each, a few per iteration, and keeps the residual
-  // from converging (thesis-scale box, 1950-02: 21 iterations with 2 changes, or no convergence on
-  // another partition). The held branches are checked at convergence (held_off_branch).
-  static constexpr int kHoldOnFirstChangeFrom = 3;
-  // Corrections::Bounded: no correction leaves more than kCorrectionBound x tolerance x r_0 of
-  // residual, so the iterates on which the holds are decided are within 50 times the Newton
-  // tolerance of an exact Newton's (docs/mechanics.md: the held set first changed at 10,000 x
-  // tolerance on test_locked_history, at 200 x on the scale-0.05 thesis box: a margin of 4 there).
-  static constexpr double kCorrectionBound = 50;
-  void track_branches(int k);
-  // Whether an element's tangent changed with its loading phase since `phase_before`.
-  bool tangent_moved(std::size_t h, int phase_before) const;
-
-  // The consistency of the held branches at a converged iterate. A held element whose J ended on
-  // the other side of its knee, at distance delta = J - J_knee, is a point of the law's graph
-  // after a vertical strain change of delta (the stress moves by delta Dhat e_z / c_t): its
-  // residual is within ||V B^T delta Dhat e_z / c_t|| of the residual of a state that obeys the
-  // law everywhere (at the knee the response is set-valued: either branch's stiffness is
-  // admissible). Returns the sum of these bounds over the inconsistent elements (all ranks).
-  double held_off_branch() const;
-
-  Reads in_;
-  Changes out_;
-  Operations op_;
 };
 
 struct MechanicsSolver::Impl {

@@ -1,7 +1,7 @@
 // Case-file parameters as ugs-calibrate (--param PATH[,PATH...]=LOWER:UPPER[:log]) and ugs-ensemble
-// name them (analysis/insar/src/case_params.cpp): the input is a TOML case, a line "%%", then one
+// name them (analysis/runner/src/case_params.cpp): the input is a TOML case, a line "%%", then one
 // parameter per line (up to 4 accepted ones: each costs a dozen parses of the case). The case is
-// read as insar::CaseTemplate, each parameter parsed (parse_parameter), its paths looked up
+// read as runner::CaseTemplate, each parameter parsed (parse_parameter), its paths looked up
 // (value), the case rendered with every path of a parameter at its lower and at its upper bound,
 // then check_parameters (what both tools do before running) and referenced_files. A rendered copy
 // must read back: the same paths hold the values set.
@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "fuzz_support.hpp"
-#include "ugs/insar/case_params.hpp"
+#include "ugs/runner/case_params.hpp"
 
 namespace {
 
@@ -19,16 +19,16 @@ namespace {
 }
 
 // Renders the case with `values` and reads the copy back.
-void render_and_reread(const ugs::insar::CaseTemplate& tmpl, const std::vector<std::pair<std::string, double>>& values) {
+void render_and_reread(const ugs::runner::CaseTemplate& tmpl, const std::vector<std::pair<std::string, double>>& values) {
   const std::string text = tmpl.render(values);
   const std::string copy = ugs::fuzz::write_temp("copy.toml", reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
   std::string step = "reading the rendered copy";
   try {
-    const ugs::insar::CaseTemplate back(copy);
+    const ugs::runner::CaseTemplate back(copy);
     for (const auto& [p, v] : values) {
       step = "the value of " + p + " in the rendered copy";
       const double got = back.value(p);
-      if (got != v) finding(p + " set to " + ugs::insar::toml_float(v) + " reads back as " + ugs::insar::toml_float(got));
+      if (got != v) finding(p + " set to " + ugs::runner::toml_float(v) + " reads back as " + ugs::runner::toml_float(got));
     }
   } catch (const ugs::InputError& e) {
     finding(step + ": " + e.what());
@@ -44,14 +44,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string params = sep == std::string::npos ? "" : input.substr(sep + 4);
   const std::string path = ugs::fuzz::write_temp("case.toml", reinterpret_cast<const std::uint8_t*>(case_text.data()), case_text.size());
   ugs::fuzz::outcome([&] {
-    const ugs::insar::CaseTemplate tmpl(path);
+    const ugs::runner::CaseTemplate tmpl(path);
     (void)tmpl.referenced_files();
-    std::vector<ugs::insar::ParameterSpec> specs;
+    std::vector<ugs::runner::ParameterSpec> specs;
     std::istringstream lines(params);
     for (std::string line; std::getline(lines, line) && specs.size() < 4;) {
       if (line.empty()) continue;
       ugs::fuzz::outcome([&] {
-        const ugs::insar::ParameterSpec p = ugs::insar::parse_parameter(line);
+        const ugs::runner::ParameterSpec p = ugs::runner::parse_parameter(line);
         for (const auto& q : p.paths) (void)tmpl.value(q);
         for (double v : {p.lower, p.upper}) {
           std::vector<std::pair<std::string, double>> values;
@@ -61,7 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         specs.push_back(p);
       });
     }
-    if (!specs.empty()) (void)ugs::insar::check_parameters(tmpl, specs);
+    if (!specs.empty()) (void)ugs::runner::check_parameters(tmpl, specs);
   });
   return 0;
 }

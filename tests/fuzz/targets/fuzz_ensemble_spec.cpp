@@ -12,7 +12,7 @@
 #include "fuzz_support.hpp"
 #include "ugs/ensemble/design.hpp"
 #include "ugs/ensemble/spec.hpp"
-#include "ugs/insar/case_params.hpp"
+#include "ugs/runner/case_params.hpp"
 
 namespace {
 
@@ -114,7 +114,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const std::string case_path = [] {
     return ugs::fuzz::write_temp("case.toml", reinterpret_cast<const std::uint8_t*>(kCase), std::strlen(kCase));
   }();
-  static const ugs::insar::CaseTemplate tmpl(case_path);
+  static const ugs::runner::CaseTemplate tmpl(case_path);
   const std::string path = ugs::fuzz::write_temp("ensemble.toml", data, size);
   ugs::fuzz::outcome([&] {
     ugs::ensemble::EnsembleSpec s = ugs::ensemble::read_spec(path);

@@ -86,9 +86,14 @@ public:
   std::size_t num_nodes() const;
   std::size_t num_cells() const;
   std::vector<std::uint64_t> node_tags() const;
+  // Every coordinate finite; InputError "r.h5: /mesh/coordinates: node 7 has x = nan (expected
+  // finite coordinates)" otherwise.
   std::vector<Point3> coordinates() const;
   std::vector<ElementType> cell_types() const;  // in output order
   // Connectivity (0-based node indices, nodes_per_element(type) per cell); empty if not written.
+  // Every index below num_nodes(); InputError "r.h5: /mesh/tetrahedra: cell 3 has node index
+  // 4294967295 (expected below the 1234 nodes of /mesh/coordinates)" otherwise. So a damaged or
+  // hand-made file is refused with one line before anything indexes with it.
   std::vector<std::uint32_t> cells(ElementType type) const;
   std::vector<std::uint64_t> cell_tags() const;
   std::vector<std::int32_t> materials() const;

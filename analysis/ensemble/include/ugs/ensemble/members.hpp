@@ -1,5 +1,5 @@
 // The members of an ensemble as solver runs: member k (1-based) of the design is the case with
-// the parameters' paths set to row k, run through the shared runner (insar::SolverRuns, as
+// the parameters' paths set to row k, run through the shared runner (runner::SolverRuns, as
 // ugs-calibrate's evaluations) into CACHE/member-<hash>/, content-addressed, so a rerun (or a
 // Makefile / Slurm job running one member) skips the members already done. The entry keeps the
 // solver's outputs (result.h5, *_faults.csv, *_scenario.csv): metrics are computed when collecting.
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "ugs/ensemble/design.hpp"
-#include "ugs/insar/solver_runs.hpp"
+#include "ugs/runner/solver_runs.hpp"
 
 namespace ugs::ensemble {
 
@@ -26,12 +26,12 @@ struct MemberStatus {
 
 class EnsembleMembers {
 public:
-  EnsembleMembers(const EnsembleSpec& spec, Design design, const insar::CaseTemplate& tmpl, const std::string& command,
+  EnsembleMembers(const EnsembleSpec& spec, Design design, const runner::CaseTemplate& tmpl, const std::string& command,
                   const std::string& mesh, const std::string& cache_dir);
 
   std::size_t size() const { return design_.x.size(); }
   const Design& design() const { return design_; }
-  insar::ParameterValues values(std::size_t k) const;   // k 0-based
+  runner::ParameterValues values(std::size_t k) const;   // k 0-based
   std::string entry(std::size_t k) const;
   std::string folder(std::size_t k) const;                // CACHE/entry
   MemberStatus status(std::size_t k) const;              // from the cache, runs nothing
@@ -41,12 +41,12 @@ public:
   // `on_done(k, status)` is called under a lock after each.
   std::vector<MemberStatus> run(const std::vector<std::size_t>& which, int jobs,
                                 const std::function<void(std::size_t, const MemberStatus&)>& on_done);
-  const insar::SolverRuns& runs() const { return *runs_; }
+  const runner::SolverRuns& runs() const { return *runs_; }
 
 private:
   const EnsembleSpec& spec_;
   Design design_;
-  std::unique_ptr<insar::SolverRuns> runs_;
+  std::unique_ptr<runner::SolverRuns> runs_;
 };
 
 // A Makefile (GNU make) and a Slurm job-array script whose jobs each run one member with

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace ugs::insar {
+namespace ugs::runner {
 class CaseTemplate;
 }
 
@@ -68,7 +68,7 @@ std::size_t minimum_members(DesignMethod m, std::size_t d);
 
 // Every path must be a number in the case, and the case must stay valid (ugs::read_case_file) at
 // each parameter's low and high end (the 0.1 % and 99.9 % quantiles for unbounded
-// distributions): the check ugs-calibrate makes for its bounds (insar::check_parameters).
-void check_against_case(const EnsembleSpec& spec, const insar::CaseTemplate& tmpl);
+// distributions): the check ugs-calibrate makes for its bounds (runner::check_parameters).
+void check_against_case(const EnsembleSpec& spec, const runner::CaseTemplate& tmpl);
 
 }  // namespace ugs::ensemble

@@ -26,10 +26,6 @@ geo::PolygonSet read_polygons(const std::string& path, const std::string& model_
 // read_ps, refusing points that declare a CRS when the model CRS (options.model_crs) is unknown.
 PsData read_ps_in_model(const std::string& path, const PsReadOptions& options);
 
-// A numeric option: InputError(option, "inf (expected a finite number >= 0)") unless finite and
-// within [lo, hi] (lo excluded when `lo_open`).
-void check_option(const std::string& option, double value, double lo, double hi, bool lo_open = false);
-
 // "A/B/..." with exactly `count` finite numbers (no trailing text): InputError(option, "'text' is
 // not FORMAT (finite numbers)") otherwise.
 std::vector<double> parse_number_list(const std::string& option, const std::string& text, std::size_t count,

@@ -1,4 +1,4 @@
-#include "ugs/insar/subprocess.hpp"
+#include "ugs/runner/subprocess.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -17,7 +17,7 @@
 
 extern char** environ;
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 CommandResult run_command(const std::vector<std::string>& argv, const std::string& cwd, const std::string& log,
                           const std::map<std::string, std::string>& env) {
@@ -88,4 +88,4 @@ std::string last_line(const std::string& path, std::size_t max_chars) {
   return last;
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

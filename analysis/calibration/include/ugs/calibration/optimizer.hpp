@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "ugs/insar/evaluator.hpp"
+#include "ugs/calibration/evaluator.hpp"
 
-namespace ugs::insar {
+namespace ugs::calibration {
 
 struct OptimizerOptions {
   int scan = -1;          // grid values per parameter; -1: 5 for one parameter, 3 for more; 0 or 1: no scan
@@ -32,10 +32,10 @@ struct OptimizerResult {
 };
 
 // Maps [0, 1] to the parameter's natural units (linear or log10).
-double to_natural(const ParameterSpec& p, double s);
-double to_unit(const ParameterSpec& p, double x);
+double to_natural(const runner::ParameterSpec& p, double s);
+double to_unit(const runner::ParameterSpec& p, double x);
 
-OptimizerResult optimize(Evaluator& evaluator, const std::vector<ParameterSpec>& params, const OptimizerOptions& options);
+OptimizerResult optimize(Evaluator& evaluator, const std::vector<runner::ParameterSpec>& params, const OptimizerOptions& options);
 
 // Brent's localmin on [a, b] starting from x0 (f(x0) = f0 known), to tolerance tol; stops after
 // max_evals calls of f. Returns the best x seen. Exposed for tests.
@@ -47,4 +47,4 @@ struct BrentResult {
 BrentResult brent_minimize(const std::function<double(double)>& f, double a, double b, double x0, double f0, double tol,
                            int max_evals);
 
-}  // namespace ugs::insar
+}  // namespace ugs::calibration

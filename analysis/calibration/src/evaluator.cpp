@@ -1,4 +1,4 @@
-#include "ugs/insar/evaluator.hpp"
+#include "ugs/calibration/evaluator.hpp"
 
 #include <unistd.h>
 
@@ -19,11 +19,15 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/io.hpp"
-#include "ugs/insar/content_hash.hpp"
 #include "ugs/insar/displacement.hpp"
-#include "ugs/insar/solver_runs.hpp"
+#include "ugs/runner/content_hash.hpp"
+#include "ugs/runner/solver_runs.hpp"
 
-namespace ugs::insar {
+namespace ugs::calibration {
+
+// The PS-side types (samples, misfit) and the runner (case templates, solver runs).
+using namespace ugs::insar;
+using namespace ugs::runner;
 
 namespace fs = std::filesystem;
 
@@ -264,4 +268,4 @@ void Evaluator::write_index() {
   f.commit();
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::calibration

@@ -1,4 +1,4 @@
-#include "ugs/insar/case_params.hpp"
+#include "ugs/runner/case_params.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -19,7 +19,7 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/toml_reader.hpp"
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 namespace fs = std::filesystem;
 
@@ -372,4 +372,4 @@ std::string CaseTemplate::render(const std::vector<std::pair<std::string, double
   return out;
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

@@ -19,9 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include "ugs/insar/case_params.hpp"
+#include "ugs/runner/case_params.hpp"
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 using ParameterValues = std::vector<std::pair<std::string, double>>;  // case path -> value
 
@@ -80,4 +80,4 @@ std::string read_text_file(const std::string& path);
 void write_text_file(const std::string& path, const std::string& text);
 std::string json_string(const std::string& s);
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 struct ParameterSpec {
   std::string name;                 // the paths as written, for tables and messages
@@ -59,4 +59,4 @@ std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::v
 // Shortest decimal that reads back to `v`, always a TOML float ("3.0", "2.5e-07").
 std::string toml_float(double v);
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

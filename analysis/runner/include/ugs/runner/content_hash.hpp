@@ -8,11 +8,11 @@
 #include <string>
 #include <string_view>
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 // SHA-256 of the bytes, as 64 lower-case hex digits.
 std::string sha256_hex(std::string_view bytes);
 // SHA-256 of a file's bytes (read in 1 MiB pieces); InputError(path) if it cannot be read.
 std::string sha256_file_hex(const std::string& path);
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

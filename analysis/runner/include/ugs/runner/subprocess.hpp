@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 struct CommandResult {
   int exit_code = -1;      // 128 + signal when killed by a signal
@@ -28,4 +28,4 @@ std::string shell_quote(const std::string& s);
 // The last non-empty line of a (log) file, at most `max_chars` long; "" if none.
 std::string last_line(const std::string& path, std::size_t max_chars = 300);
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

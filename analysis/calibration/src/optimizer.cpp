@@ -1,4 +1,4 @@
-#include "ugs/insar/optimizer.hpp"
+#include "ugs/calibration/optimizer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,9 @@
 
 #include "ugs/formats/error.hpp"
 
-namespace ugs::insar {
+namespace ugs::calibration {
+
+using runner::ParameterSpec;
 
 double to_natural(const ParameterSpec& p, double s) {
   s = std::clamp(s, 0.0, 1.0);
@@ -190,4 +192,4 @@ OptimizerResult optimize(Evaluator& ev, const std::vector<ParameterSpec>& params
   return res;
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::calibration

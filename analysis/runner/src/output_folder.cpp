@@ -1,4 +1,4 @@
-#include "ugs/insar/output_folder.hpp"
+#include "ugs/runner/output_folder.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 
 #include "ugs/formats/error.hpp"
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 namespace fs = std::filesystem;
 
@@ -50,4 +50,4 @@ void OutputFolder::commit() {
   if (!old.empty()) fs::remove_all(old, ec);
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

@@ -20,11 +20,11 @@
 #include <string>
 #include <vector>
 
-#include "ugs/insar/case_params.hpp"
 #include "ugs/insar/misfit.hpp"
-#include "ugs/insar/solver_runs.hpp"
+#include "ugs/runner/case_params.hpp"
+#include "ugs/runner/solver_runs.hpp"
 
-namespace ugs::insar {
+namespace ugs::calibration {
 
 // The displacement at the PS points at every result step (what an evaluation keeps).
 struct SimulatedSeries {
@@ -36,12 +36,12 @@ struct SimulatedSeries {
   static SimulatedSeries read_csv(const std::string& path);
   bool has(const std::string& id) const;
   // Interpolated linearly in time at `dates` for `points` (by id), as Samples (no reference).
-  Samples at_dates(const std::vector<LocatedPoint>& points, const std::vector<std::int64_t>& dates) const;
+  insar::Samples at_dates(const std::vector<insar::LocatedPoint>& points, const std::vector<std::int64_t>& dates) const;
 };
 
 struct EvaluatorSetup {
-  const CaseTemplate* case_template = nullptr;
-  std::vector<ParameterSpec> params;
+  const runner::CaseTemplate* case_template = nullptr;
+  std::vector<runner::ParameterSpec> params;
   std::string solver_command;                 // must contain {case} and {out}
   std::string mesh_path;                      // for {mesh}
   std::string cache_dir;
@@ -52,13 +52,13 @@ struct EvaluatorSetup {
   // Result file -> series at the PS points (in-process sampling).
   std::function<SimulatedSeries(const std::string& result_h5)> sample;
   // Series -> misfit.
-  std::function<Misfit(const SimulatedSeries&)> misfit;
+  std::function<insar::Misfit(const SimulatedSeries&)> misfit;
 };
 
 struct Evaluation {
   std::size_t index = 0;         // 1-based, in request order over the run
   std::vector<double> x;         // parameter values (natural units)
-  Misfit misfit;
+  insar::Misfit misfit;
   bool cached = false;
   double seconds = 0;            // solver wall time (0 when cached); for stderr and timing.txt only
   std::string phase;             // "scan", "brent", "bobyqa", ...
@@ -86,15 +86,15 @@ public:
 
 private:
   Evaluation run_one(const std::vector<double>& x);
-  ParameterValues values_of(const std::vector<double>& x) const;
+  runner::ParameterValues values_of(const std::vector<double>& x) const;
   void write_index();
 
   EvaluatorSetup setup_;
-  SolverRuns runs_;  // the shared runner of solver subprocesses (solver_runs.hpp)
+  runner::SolverRuns runs_;  // the shared runner of solver subprocesses (solver_runs.hpp)
   std::vector<Evaluation> history_;
   std::map<std::string, SimulatedSeries> series_;   // entry -> series (for the best one and reports)
   std::map<std::string, std::string> index_rows_;   // entry -> CSV row
   std::mutex mutex_;
 };
 
-}  // namespace ugs::insar
+}  // namespace ugs::calibration

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 class OutputFolder {
 public:
@@ -26,4 +26,4 @@ private:
   bool committed_ = false;
 };
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

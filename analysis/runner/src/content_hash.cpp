@@ -1,4 +1,4 @@
-#include "ugs/insar/content_hash.hpp"
+#include "ugs/runner/content_hash.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -11,7 +11,7 @@
 
 #include "ugs/formats/error.hpp"
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 namespace {
 
@@ -62,4 +62,4 @@ std::string sha256_file_hex(const std::string& path) {
   return h.hex();
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner

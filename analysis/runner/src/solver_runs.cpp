@@ -1,4 +1,4 @@
-#include "ugs/insar/solver_runs.hpp"
+#include "ugs/runner/solver_runs.hpp"
 
 #include <unistd.h>
 
@@ -13,10 +13,10 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
-#include "ugs/insar/content_hash.hpp"
-#include "ugs/insar/subprocess.hpp"
+#include "ugs/runner/content_hash.hpp"
+#include "ugs/runner/subprocess.hpp"
 
-namespace ugs::insar {
+namespace ugs::runner {
 
 namespace fs = std::filesystem;
 
@@ -292,4 +292,4 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
   return r.seconds;
 }
 
-}  // namespace ugs::insar
+}  // namespace ugs::runner
