@@ -10,6 +10,7 @@
 //   ugs-seismicity patch_dcfs.csv --case case.toml --patch-area-km2 4 --window 2025-01-01/2030-01-01 -o patch.csv
 #include <algorithm>
 
+#include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/seismicity/run.hpp"
@@ -32,7 +33,9 @@ int main(int argc, char** argv) {
   app.add_option("--start", s.start, "Count events from this date (ISO 8601; default the first date of the history)");
   app.add_option("--window", s.windows, "Forecast window START/END (ISO 8601), repeatable: expected events and P(M >= m)");
   app.add_option("--patch-name", s.patch_name, "Name of the patch of a date,dcfs_MPa input")->capture_default_str();
-  app.add_option("--patch-area-km2", s.patch_area_km2, "Area of the patch of a date,dcfs_MPa input, km2")->capture_default_str();
+  app.add_option("--patch-area-km2", s.patch_area_km2, "Area of the patch of a date,dcfs_MPa input, km2")
+      ->check(cli::number_in(0, 1e6, cli::Ends::OpenLow))
+      ->capture_default_str();
   app.add_option("--windows-csv", s.windows_csv, "Per window, fault and magnitude (default <stem>_windows.csv with --window; none)");
   app.add_option("--pairs-csv", s.pairs_csv, "Per date, fault and node pair, for maps (default <stem>_pairs.csv; none)");
   app.add_option("--field-output", s.field_output,
