@@ -19,7 +19,7 @@
 #include "ugs/meshing/mesh_quality.hpp"
 #include "cut_band_improvement.hpp"
 #include "node_grid.hpp"
-#include "vec3.hpp"
+#include "ugs/meshing/vec3.hpp"
 
 namespace ugs {
 namespace {

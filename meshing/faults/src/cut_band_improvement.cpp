@@ -14,7 +14,7 @@
 #include <Eigen/Dense>
 
 #include "ugs/meshing/mesh_quality.hpp"
-#include "vec3.hpp"
+#include "ugs/meshing/vec3.hpp"
 
 namespace ugs {
 namespace {
