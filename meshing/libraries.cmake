@@ -6,6 +6,10 @@
 # GDAL loads the serial HDF5. Executables that use only the structured box meshes of meshing
 # (solver tests that also link PETSc and its MPI HDF5) must not load it, so gmsh and GDAL are linked
 # "as needed": an executable records them only if it uses code that calls them.
+# A program's link also pulls an archive member for a weak copy of libstdc++'s own code that an
+# earlier item references (std::string's, from libgtest.a): a member that calls GDAL would bring
+# GDAL in (the ugs_meshing umbrella links libstdc++ first for that). Check with readelf -d (NEEDED)
+# on a test that links only box meshes.
 # The feature is looked up in the directory of each executable that links us: define it in the
 # top-level scope too (meshing/ is added before solver/, tools/ and tests/).
 set(CMAKE_LINK_LIBRARY_USING_ugs_as_needed "LINKER:--push-state,--as-needed" "<LINK_ITEM>" "LINKER:--pop-state")
