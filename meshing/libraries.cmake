@@ -1,9 +1,15 @@
-# Extra links of ugs_meshing: the gmsh SDK (plan meshes), GDAL/OGR (rasters, vector files, CRS) and
-# CGAL (natural-neighbour interpolation of picks, with GMP/MPFR).
+# Third-party links of the meshing rooms: GDAL/OGR (common: rasters, vector files, CRS; plan: its
+# inputs), the gmsh SDK (plan: the graded plan mesh) and CGAL (layers: natural-neighbour
+# interpolation of picks, with GMP/MPFR). Each room asks for what its own code calls:
+#   ugs_meshing_link(<room target> [GDAL] [GMSH] [CGAL])
 #
-# GDAL loads the serial HDF5. Executables that use only the structured box meshes of this library
+# GDAL loads the serial HDF5. Executables that use only the structured box meshes of meshing
 # (solver tests that also link PETSc and its MPI HDF5) must not load it, so gmsh and GDAL are linked
 # "as needed": an executable records them only if it uses code that calls them.
+# A program's link also pulls an archive member for a weak copy of libstdc++'s own code that an
+# earlier item references (std::string's, from libgtest.a): a member that calls GDAL would bring
+# GDAL in (the ugs_meshing umbrella links libstdc++ first for that). Check with readelf -d (NEEDED)
+# on a test that links only box meshes.
 # The feature is looked up in the directory of each executable that links us: define it in the
 # top-level scope too (meshing/ is added before solver/, tools/ and tests/).
 set(CMAKE_LINK_LIBRARY_USING_ugs_as_needed "LINKER:--push-state,--as-needed" "<LINK_ITEM>" "LINKER:--pop-state")
@@ -23,8 +29,25 @@ endif()
 get_filename_component(_ugs_gdal_file ${_ugs_gdal_file} REALPATH)
 get_filename_component(_ugs_gmsh_file ${GMSH_LIBRARY} REALPATH)
 get_target_property(_ugs_gdal_includes GDAL::GDAL INTERFACE_INCLUDE_DIRECTORIES)
-target_include_directories(ugs_meshing SYSTEM PRIVATE ${_ugs_gdal_includes} ${GMSH_INCLUDE_DIR})
-target_link_libraries(ugs_meshing
-  PRIVATE $<BUILD_INTERFACE:CGAL::CGAL>
-  PUBLIC "$<BUILD_INTERFACE:$<LINK_LIBRARY:ugs_as_needed,${_ugs_gdal_file},${_ugs_gmsh_file}>>"
-         "$<INSTALL_INTERFACE:${_ugs_gdal_file};${_ugs_gmsh_file};${UGS_MPFR_LIBRARY};${UGS_GMP_LIBRARY}>")
+
+function(ugs_meshing_link target)
+  cmake_parse_arguments(PARSE_ARGV 1 arg "GDAL;GMSH;CGAL" "" "")
+  set(files "")
+  if(arg_GDAL)
+    target_include_directories(${target} SYSTEM PRIVATE ${_ugs_gdal_includes})
+    list(APPEND files ${_ugs_gdal_file})
+  endif()
+  if(arg_GMSH)
+    target_include_directories(${target} SYSTEM PRIVATE ${GMSH_INCLUDE_DIR})
+    list(APPEND files ${_ugs_gmsh_file})
+  endif()
+  if(files)
+    list(JOIN files "," items)
+    target_link_libraries(${target} PUBLIC "$<BUILD_INTERFACE:$<LINK_LIBRARY:ugs_as_needed,${items}>>"
+                                           "$<INSTALL_INTERFACE:${files}>")
+  endif()
+  if(arg_CGAL)
+    target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:CGAL::CGAL>
+                          PUBLIC "$<INSTALL_INTERFACE:${UGS_MPFR_LIBRARY};${UGS_GMP_LIBRARY}>")
+  endif()
+endfunction()

@@ -16,17 +16,19 @@ add_subdirectory(formats)
 # The readers of meshing/, solver/flow, analysis/insar and analysis/runner with exactly the sources they reach
 # (strata -> natural neighbours, surface stack, fault traces; ps_data -> crs; case_params -> the
 # case file of ugs_formats).
-set(_m ${PROJECT_SOURCE_DIR}/meshing/src)
+set(_m ${PROJECT_SOURCE_DIR}/meshing)
 add_library(ugs_fuzz_readers STATIC
-  ${_m}/strata.cpp ${_m}/natural_neighbour.cpp ${_m}/surface_stack.cpp ${_m}/plan.cpp
-  ${_m}/fault_traces.cpp ${_m}/fault_traces_ogr.cpp ${_m}/geodata.cpp ${_m}/plan_inputs.cpp ${_m}/horizon_grids.cpp
+  ${_m}/layers/src/strata.cpp ${_m}/layers/src/natural_neighbour.cpp ${_m}/layers/src/surface_stack.cpp
+  ${_m}/layers/src/horizon_grids.cpp
+  ${_m}/plan/src/plan.cpp ${_m}/plan/src/plan_inputs.cpp
+  ${_m}/common/src/fault_traces.cpp ${_m}/common/src/fault_traces_ogr.cpp ${_m}/common/src/geodata.cpp
   ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
   ${PROJECT_SOURCE_DIR}/analysis/insar/src/ps_data.cpp ${PROJECT_SOURCE_DIR}/analysis/insar/src/crs.cpp
   ${PROJECT_SOURCE_DIR}/analysis/runner/src/case_params.cpp)
 get_target_property(_ugs_gdal_includes GDAL::GDAL INTERFACE_INCLUDE_DIRECTORIES)
 target_include_directories(ugs_fuzz_readers SYSTEM PUBLIC ${_ugs_gdal_includes} ${GMSH_INCLUDE_DIR})
 target_include_directories(ugs_fuzz_readers PUBLIC
-  ${PROJECT_SOURCE_DIR}/meshing/include ${PROJECT_SOURCE_DIR}/solver/include
+  ${_m}/common/include ${_m}/plan/include ${_m}/layers/include ${PROJECT_SOURCE_DIR}/solver/include
   ${PROJECT_SOURCE_DIR}/solver/flow/include ${PROJECT_SOURCE_DIR}/analysis/insar/include
   ${PROJECT_SOURCE_DIR}/analysis/runner/include)
 target_link_libraries(ugs_fuzz_readers PUBLIC ugs_formats GDAL::GDAL PRIVATE CGAL::CGAL Eigen3::Eigen)

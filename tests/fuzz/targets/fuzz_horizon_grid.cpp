@@ -1,6 +1,6 @@
 // Horizon grids of modelling packages (formats/src/irap_grid.cpp, cps3_grid.cpp, horizon_format.cpp):
 // the input is told by its content as ugs-meshgen does, read by the IRAP classic ASCII or CPS-3
-// ASCII reader, then sampled bilinearly (meshing/src/horizon_grids.cpp) at points over and around
+// ASCII reader, then sampled bilinearly (meshing/layers/src/horizon_grids.cpp) at points over and around
 // the grid; every value sampled must be finite.
 #include <cmath>
 #include <cstdlib>

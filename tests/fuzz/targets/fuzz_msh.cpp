@@ -1,5 +1,5 @@
 // Gmsh MSH 4.1 reader, ASCII and binary (formats/src/msh_reader.cpp), as ugs-meshinfo and every mesh
-// consumer call it, then the checks a plan goes through in ugs-meshgen (meshing/src/plan.cpp) and
+// consumer call it, then the checks a plan goes through in ugs-meshgen (meshing/plan/src/plan.cpp) and
 // the summary of ugs-meshinfo.
 #include "fuzz_support.hpp"
 #include "ugs/formats/io.hpp"

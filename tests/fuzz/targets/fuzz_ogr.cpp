@@ -1,8 +1,8 @@
 // GeoJSON (and any vector input OGR reads) given to the tools: the input is a /vsimem/ file that
 // only the GeoJSON driver may open, read as
 //   - ugs-mesh2d reads its domain, refinement, trace, fault and section files
-//     (meshing/src/plan_inputs.cpp, through meshing/src/geodata.cpp),
-//   - the faults file of ugs-meshgen and ugs-faultinsert (meshing/src/fault_traces_ogr.cpp),
+//     (meshing/plan/src/plan_inputs.cpp, through meshing/common/src/geodata.cpp),
+//   - the faults file of ugs-meshgen and ugs-faultinsert (meshing/common/src/fault_traces_ogr.cpp),
 //   - a polygon / feature file (geo::read_vector, --inside of ugs-calibrate, material polygons),
 //   - the PS points of ugs-sample (analysis/insar/src/ps_data.cpp, OGR layout).
 #include <cpl_vsi.h>

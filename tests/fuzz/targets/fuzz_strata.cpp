@@ -1,4 +1,4 @@
-// The stratigraphy file of ugs-meshgen (meshing/src/strata.cpp over formats/src/toml_reader.cpp),
+// The stratigraphy file of ugs-meshgen (meshing/layers/src/strata.cpp over formats/src/toml_reader.cpp),
 // then its evaluation on a small fixed plan (constant surfaces, units, material rules, fault depth
 // ranges; files it names are looked for beside it and are absent unless the input names itself).
 #include "fuzz_support.hpp"

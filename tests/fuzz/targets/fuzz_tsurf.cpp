@@ -1,5 +1,5 @@
 // GOCAD TSurf horizons (formats/src/gocad_tsurf.cpp), then what ugs-meshgen does with one
-// (meshing/src/horizon_grids.cpp): the surface checks (non-manifold edges and vertices,
+// (meshing/layers/src/horizon_grids.cpp): the surface checks (non-manifold edges and vertices,
 // orientation, folds, CGAL's self-intersection test) and linear sampling at points over the surface.
 #include <cmath>
 #include <cstdlib>

@@ -1,4 +1,4 @@
-// ZMAP+ grids (meshing/src/horizon_grids.cpp: the line layout checked against the header, then
+// ZMAP+ grids (meshing/layers/src/horizon_grids.cpp: the line layout checked against the header, then
 // GDAL's ZMap driver reads the values), then bilinear sampling at points over the grid.
 #include <cmath>
 #include <cstdlib>

@@ -1,7 +1,7 @@
 // Horizon grids as geological modelling packages export them (docs/meshing.md, "Horizons from
 // Petrel, RMS, SKUA-GOCAD, Move"): a regular grid of nodes, possibly rotated, with undefined nodes.
 // IRAP classic ASCII and CPS-3 ASCII are read here (GDAL 3.6 reads neither); ZMAP+ is read by
-// GDAL's ZMap driver (meshing/src/horizon_grids.cpp). The format is told by the file's content.
+// GDAL's ZMap driver (meshing/layers/src/horizon_grids.cpp). The format is told by the file's content.
 #pragma once
 #include <array>
 #include <cmath>

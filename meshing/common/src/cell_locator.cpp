@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "vec3.hpp"
+#include "ugs/meshing/vec3.hpp"
 
 namespace ugs {
 namespace {

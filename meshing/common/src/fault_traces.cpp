@@ -7,7 +7,7 @@
 
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/fault_traces.hpp"
-#include "vec3.hpp"
+#include "ugs/meshing/vec3.hpp"
 
 namespace ugs {
 namespace {

@@ -11,10 +11,9 @@
 #include <vector>
 
 #include "ugs/formats/mesh.hpp"
+#include "ugs/meshing/xy.hpp"
 
 namespace ugs {
-
-using XY = std::array<double, 2>;
 
 struct PlanLineGroup {
   std::string name;                                  // physical name, e.g. "fault:overthrust_north"

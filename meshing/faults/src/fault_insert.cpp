@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
-#include "vec3.hpp"
+#include "ugs/meshing/vec3.hpp"
 
 namespace ugs {
 namespace {

@@ -1,4 +1,4 @@
-// Arithmetic on Point3 for the meshing sources (internal to ugs_meshing).
+// Arithmetic on Point3 for the meshing sources (common, faults); not meant for code outside meshing/.
 #pragma once
 
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "ugs/meshing/plan.hpp"
+#include "ugs/meshing/xy.hpp"
 
 namespace ugs::geo {
 
