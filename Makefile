@@ -1,21 +1,32 @@
 # Two commands do everything on a fresh Debian 12 machine:
-#   make demo   install dependencies, build, run the sample case
-#   make test   install dependencies, build, run the test suite (what CI runs)
+#   make demo   install dependencies, build the tools the demo runs, run the sample case
+#   make test   install dependencies, build everything (tools, tests, bench cases), run the test suite (what CI runs)
 BUILD     ?= build
 JOBS      ?= $(shell nproc)
 CTEST_ARGS ?= -LE bench-long
 PREFIX    ?= /usr/local
 
-.PHONY: all deps build test test-asan fuzz demo bench install clean
+.PHONY: all deps configure build demo-tools test test-asan fuzz demo bench install clean
 
 all: build
 
 deps:
 	./scripts/install-deps
 
-build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+# A new build tree gets Ninja (scripts/install-deps installs it; it schedules the compile units of all
+# targets together); an existing tree keeps the generator it was made with.
+GENERATOR = $(if $(wildcard $(BUILD)/CMakeCache.txt),,-G Ninja)
+
+configure: deps
+	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release
+
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
+
+# Only the executables the demo runs (tools/CMakeLists.txt, target ugs-demo-tools): a first
+# `make demo` compiles no test (the suite is most of the compile units).
+demo-tools: configure
+	cmake --build $(BUILD) -j $(JOBS) --target ugs-demo-tools
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
@@ -33,7 +44,7 @@ fuzz: deps
 	/usr/bin/python3 tests/fuzz/run_fuzz.py --source $(CURDIR) --build $(CURDIR)/build-fuzz --seconds $(FUZZ_SECONDS) --fuzz-seed 0 --jobs $(JOBS)
 
 # The faulted run goes alongside the continuous one and the calibration (make -j).
-demo: build
+demo: demo-tools
 	$(MAKE) -C data-samples/po-plain -j $(JOBS) demo UGS_BIN=$(abspath $(BUILD))/tools
 
 bench: build

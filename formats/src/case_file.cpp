@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/csv.hpp"
+#include "ugs/formats/toml_reader.hpp"
 
 namespace ugs {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "ugs/formats/toml_reader.hpp"
+#include "ugs/formats/error.hpp"  // ErrorList; not toml_reader.hpp: toml11 costs every includer ~2 s of compiling
 
 namespace ugs {
 
