@@ -113,7 +113,7 @@ TEST(SeismicityCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
       {d / "pairs_fault_F.csv --case " + missing, "fault 'G' of the case is missing from the results (faults: F"},
       {d / "pairs_fault_F.csv --case " + override_missing, "[seismicity.fault.G]: the results have no fault 'G' (faults: F)"},
       {d / "patch.csv --case " + no_section, "has no [seismicity] section"},
-      {d / "patch.csv --case " + d / "good.toml --patch-area-km2 0", "--patch-area-km2: 0 km2 (expected a positive area"},
+      {d / "patch.csv --case " + d / "good.toml --patch-area-km2 0", "--patch-area-km2: 0 (expected a finite number in (0, 1000000])"},
       {d / "pairs_fault_F.csv --case " + d / "good.toml --field-output " + d / "x.h5", "need the faults HDF5 as input"},
   };
   const auto before = files_in(d.path);
