@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
 #include "ugs/formats/toml_reader.hpp"
@@ -29,13 +30,9 @@ std::vector<double> parse_number_list(const std::string& option, const std::stri
   while (ok) {
     const auto slash = rest.find('/');
     std::string_view part = rest.substr(0, slash);
-    while (!part.empty() && part.front() == ' ') part.remove_prefix(1);
-    while (!part.empty() && part.back() == ' ') part.remove_suffix(1);
-    if (!part.empty() && part.front() == '+') part.remove_prefix(1);
-    double v = 0;
-    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
-    ok = !part.empty() && ec == std::errc() && end == part.data() + part.size() && std::isfinite(v);
-    out.push_back(v);
+    const auto v = parse_finite_number(part);
+    ok = v.has_value();
+    out.push_back(v.value_or(0));
     if (slash == std::string_view::npos) break;
     rest.remove_prefix(slash + 1);
   }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 
 namespace ugs::insar {
@@ -22,12 +23,11 @@ double los_displacement(const std::array<double, 3>& u, const LosGeometry& g) {
 }
 
 namespace {
+// The one finite-number parser of option and case text (formats/csv.hpp).
 bool to_double(std::string_view s, double& v) {
-  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  return !s.empty() && ec == std::errc() && end == s.data() + s.size() && std::isfinite(v);
+  const auto parsed = parse_finite_number(s);
+  if (parsed) v = *parsed;
+  return parsed.has_value();
 }
 }  // namespace
 

@@ -16,6 +16,7 @@
 #include <toml.hpp>
 
 #include "ugs/formats/case_file.hpp"
+#include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/toml_reader.hpp"
 
@@ -25,12 +26,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The one finite-number parser of option and case text (formats/csv.hpp).
 bool to_double(std::string_view s, double& v) {
-  while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-  while (!s.empty() && s.back() == ' ') s.remove_suffix(1);
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  return !s.empty() && ec == std::errc() && end == s.data() + s.size() && std::isfinite(v);
+  const auto parsed = parse_finite_number(s);
+  if (parsed) v = *parsed;
+  return parsed.has_value();
 }
 
 struct Segment {

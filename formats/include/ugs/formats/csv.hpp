@@ -26,6 +26,9 @@ CivilDate civil_from_days(std::int64_t days);
 // stand for the T, a trailing Z is allowed) or "YYYYMMDD"; nullopt if `text` is none of these
 // or not a valid date.
 std::optional<std::int64_t> parse_iso_date(std::string_view text);
+// A finite number written in option or case text: spaces around it and a leading '+' allowed, the
+// whole text read (from_chars: no locale); nullopt for anything else, nan and inf included.
+std::optional<double> parse_finite_number(std::string_view text);
 // "YYYY-MM-DD" when the time of day is midnight, "YYYY-MM-DDThh:mm:ss" otherwise.
 std::string format_iso_date(std::int64_t seconds);
 
