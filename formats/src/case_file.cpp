@@ -434,7 +434,7 @@ void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
   std::optional<TomlTable> s;
   ok([&] { s = root.table_opt("solver"); });
   if (!s) return;
-  s->reject_unknown({"tolerance", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
+  s->reject_unknown({"tolerance", "tolerance_of", "max_newton_iterations", "linear_solver", "inversion_rule", "max_substeps",
                      "reuse_preconditioner", "fault_solver", "steps", "turning_point_tolerance_MPa"},
                     ok.errors);
   for (const char* key : {"linear_solver", "fault_solver"})
@@ -449,6 +449,11 @@ void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
     c.inversion_rule = rule;
   });
   ok([&] { c.reuse_preconditioner = s->boolean_or("reuse_preconditioner", true); });
+  ok([&] {
+    const std::string of = s->string_opt("tolerance_of").value_or("step");
+    if (of != "step" && of != "total-load") throw s->error("tolerance_of", "must be one of step, total-load");
+    c.tolerance_of = of;
+  });
   ok([&] {
     const std::string steps = s->string_opt("steps").value_or("every-date");
     if (steps != "every-date" && steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");

@@ -30,11 +30,11 @@ namespace {
 
 // The options as given; typed() turns them into the driver's settings.
 struct Args {
-  std::string mesh = "-", case_file, top, top_csv, state, restart, until, solver, partition = "ptscotch";
-  std::vector<std::string> pressure;
+  std::string mesh = "-", case_file, top, top_csv, state, restart, until, solver, partition = "ptscotch", steps, tolerance_of;
+  std::vector<std::string> pressure, every_date_in;
   int checkpoint_every = -1;
   std::string fault_output, fault_csv, fault_pairs_csv, fault_solver, scenario_csv;
-  std::optional<double> scale;
+  std::optional<double> scale, tolerance;
   bool find_safe_scale = false;
 };
 
@@ -70,6 +70,16 @@ ugs::driver::RunSettings typed(const Args& a, const std::string& output) {
     s.until = static_cast<double>(*t);
   }
   if (!a.solver.empty()) s.linear = lookup(linear_solver_names(), a.solver);
+  if (!a.steps.empty()) s.steps = a.steps;
+  s.tolerance = a.tolerance;
+  if (!a.tolerance_of.empty()) s.tolerance_of = a.tolerance_of;
+  for (const std::string& w : a.every_date_in) {
+    const auto slash = w.find('/');
+    const auto from = ugs::parse_iso_date(w.substr(0, slash)), to = slash == std::string::npos ? std::nullopt : ugs::parse_iso_date(w.substr(slash + 1));
+    if (!from || !to || *to < *from)
+      throw ugs::InputError("--every-date-in", "'" + w + "' is not a window FROM/TO of ISO 8601 dates, FROM not after TO");
+    s.every_date_in.emplace_back(static_cast<double>(*from), static_cast<double>(*to));
+  }
   s.partition = *lookup(partition_names(), a.partition);
   if (a.checkpoint_every >= 0) s.checkpoint_every = a.checkpoint_every;
   FaultSettings& f = s.faults;
@@ -109,6 +119,20 @@ int main(int argc, char** argv) {
   app.add_option("--until", a.until, "Stop after this date (ISO 8601); the state is saved for --restart");
   app.add_option("--solver", a.solver, "Linear solver: cg-hypre (default), cg-gamg, mumps, cholmod (overrides the case)")
       ->check(CLI::IsMember(names_of(linear_solver_names())));
+  app.add_option("--steps", a.steps,
+                 "Dates stepped on: every-date, or turning-points (those that set the state, the output dates, the last "
+                 "date; sigma-max only) (overrides the case)")
+      ->check(CLI::IsMember({"every-date", "turning-points"}));
+  app.add_option("--every-date-in", a.every_date_in,
+                 "FROM/TO (ISO 8601): also step on every date of the pressure fields in this window, so that the "
+                 "top-surface table and the fault table hold each (repeatable)")
+      ->allow_extra_args(false);
+  app.add_option("--tolerance", a.tolerance, "Newton tolerance, a relative residual (overrides the case's [solver] tolerance)")
+      ->check(ugs::cli::number_in(1e-14, 1, ugs::cli::Ends::OpenHigh));
+  app.add_option("--tolerance-of", a.tolerance_of,
+                 "What the tolerance is relative to: step (the step's load increment) or total-load (the whole load at "
+                 "the date, when larger) (overrides the case)")
+      ->check(CLI::IsMember({"step", "total-load"}));
   app.add_option("--partition", a.partition, "Partition of the mesh over MPI ranks: ptscotch or rcb")
       ->capture_default_str()
       ->check(CLI::IsMember(names_of(partition_names())));

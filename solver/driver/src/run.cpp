@@ -58,7 +58,8 @@ struct Root {
 
 // Settings every rank agrees on (the case file is read on rank 0).
 struct Shared {
-  int faulted = 0, linear = 0, partition = 0, max_newton = 25, max_substeps = 64, reuse = 1, fault_solver = 0, search = 0;
+  int faulted = 0, linear = 0, partition = 0, max_newton = 25, max_substeps = 64, reuse = 1, fault_solver = 0, search = 0,
+      total_load = 0;
   double tolerance = 1e-8, scale = 1, max_scale = 10, scale_tolerance = 0.01, ref_time = -INFINITY;
 };
 
@@ -166,10 +167,14 @@ private:
       }
       set_.linear = static_cast<int>(o_.linear.value_or(*lookup(linear_solver_names(), R.cs.linear_solver)));
       set_.partition = static_cast<int>(o_.partition);
-      set_.tolerance = R.cs.newton_tolerance;
+      set_.tolerance = o_.tolerance.value_or(R.cs.newton_tolerance);
+      set_.total_load = o_.tolerance_of.value_or(R.cs.tolerance_of) == "total-load" ? 1 : 0;
       set_.max_newton = R.cs.max_newton_iterations;
       set_.max_substeps = R.cs.max_substeps;
       set_.reuse = R.cs.reuse_preconditioner ? 1 : 0;
+      if (o_.steps == "turning-points" && R.cs.inversion_rule != "sigma-max")
+        throw InputError("--steps", fmt::format("turning-points needs inversion_rule = \"sigma-max\" ({} has \"{}\": the other "
+                                                "rules depend on the whole path)", R.cs.path, R.cs.inversion_rule));
       if (R.model.top_nodes.empty()) log_later(-1, "the mesh has no bnd:top group: no top-surface table is written");
       if (o_.restart) {
         R.restart = mech::read_state(*o_.restart, R.mesh, R.restart_date, R.restart_time);
@@ -198,7 +203,8 @@ private:
       rule.after = R.restart_time;
       if (o_.until) rule.until = *o_.until;
       rule.checkpoint_every = o_.checkpoint_every.value_or(R.cs.checkpoint_every);
-      rule.turning_points = R.cs.steps == "turning-points";
+      rule.turning_points = o_.steps.value_or(R.cs.steps) == "turning-points";
+      rule.every_date_in = o_.every_date_in;
       rule.turning_tolerance = R.cs.turning_point_tolerance;
       if (faulted()) rule.turning_rule = mech::TurningRule::Extremes;
       if (set_.search) rule.must_take.insert(set_.ref_time);  // the search reruns from the state there
@@ -207,9 +213,10 @@ private:
       // read for its turning points are not read again).
       root_->history->check_steps(steps_.times.empty() ? -std::numeric_limits<double>::infinity() : steps_.times.back());
       if (rule.turning_points) {
-        log(1, fmt::format("turning-point steps: {} of {} dates ({}, output dates, the last date)", steps_.size(),
+        log(1, fmt::format("turning-point steps: {} of {} dates ({}, output dates, {}the last date)", steps_.size(),
                            steps_.dates_in_run,
-                           faulted() ? "every low and high of the pressure: the faults answer both" : "turning points of the pressure"));
+                           faulted() ? "every low and high of the pressure: the faults answer both" : "turning points of the pressure",
+                           rule.every_date_in.empty() ? "" : "every date in the --every-date-in windows, "));
         // Every output date is a step; the other dates skipped are missing from the per-step outputs
         // (an InSAR comparison would interpolate across them): say so once.
         if (steps_.size() < steps_.dates_in_run)
@@ -236,6 +243,7 @@ private:
     sopt.linear = static_cast<mech::LinearSolver>(set_.linear);
     sopt.partition = static_cast<mech::PartitionMethod>(set_.partition);
     sopt.tolerance = set_.tolerance;
+    sopt.tolerance_of_total_load = set_.total_load != 0;
     sopt.max_newton = set_.max_newton;
     sopt.max_substeps = set_.max_substeps;
     sopt.reuse_preconditioner = set_.reuse != 0;

@@ -18,6 +18,8 @@ StepPlan plan_steps(mech::PressureHistory& history, const CaseFile& cs, const St
     for (std::size_t k = 0; k < steps.size(); ++k) {
       if (steps[k].time <= rule.until) last = k;
       if (out_times.count(steps[k].time) || rule.must_take.count(steps[k].time)) take[k] = 1;
+      for (const auto& [from, to] : rule.every_date_in)
+        if (steps[k].time >= from && steps[k].time <= to) take[k] = 1;
     }
     if (last < steps.size()) take[last] = 1;
   }

@@ -22,6 +22,15 @@ void MechanicsSolver::Impl::external_force(const std::vector<double>& dp) {
   }
 }
 
+double MechanicsSolver::Impl::load_norm() const {
+  double sum = 0;
+  for (int a = 0; a < lm.n_owned; ++a)
+    for (int k = 0; k < 3; ++k)
+      if (!owned_dof_fixed(a, k)) sum += fext[3 * a + k] * fext[3 * a + k];
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, lm.comm);
+  return std::sqrt(sum);
+}
+
 double MechanicsSolver::Impl::residual() {
   PetscLogEventBegin(events().residual, 0, 0, 0, 0);
   // The elements that are not hypo-plastic (nearly all of them) give the same forces as at the

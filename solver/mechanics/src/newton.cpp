@@ -35,6 +35,11 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
   const double r0 = op_.residual();
   rep.residuals.push_back(1.0);
   if (r0 == 0) return true;
+  // What the tolerance is relative to: the step's own unbalanced force (its load increment), or
+  // the whole load at the step's date when that is larger (a monthly storage step then needs no
+  // more digits than the total displacement can show).
+  const double total = opt.tolerance_of_total_load ? op_.load_norm() : 0.0;
+  const double ref = std::max(r0, total);
   double rk = r0, rprev = r0;
   double eta = step_is_nonlinear() || coupling ? 1e-4 : 0.0;
   // With a coupling (faults) the default stays exact: there eta is set by the contact even on a
@@ -45,7 +50,7 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
   const Corrections corrections = has_hyp ? corrections_in_use(chosen) : Corrections::EisenstatWalker;
   for (int k = 1; k <= opt.max_newton; ++k) {
     op_.assemble();
-    const double rtol = correction_rtol(corrections, eta, r0, rk);
+    const double rtol = correction_rtol(corrections, eta, ref, rk);
     const int setups_before = in_.reuse.setups;
     const bool guess = !coupling && k == 1 && predictor.predict(in_.A, in_.r, du);
     LinearSolveResult s;
@@ -102,7 +107,7 @@ bool Newton::iterate(const std::vector<double>& dp_target, StepReport& rep, std:
       if (coupling) why += coupling->diagnosis();  // which faults and node pairs
       return false;
     }
-    if (converged(rk, r0)) {
+    if (converged(rk, ref)) {
       rep.off_branch = std::max(rep.off_branch, held_off_branch() / r0);
       return true;
     }

@@ -64,6 +64,7 @@ class Newton {
     std::function<double()> residual;     // r = f_ext - f_int(u); the trial states; returns ||r||
     std::function<void()> assemble;       // A from the trial states
     std::function<LinearSolveResult(double rtol, bool guess)> solve;  // A du = r
+    std::function<double()> load_norm;    // ||f_ext|| over the free components (after external_force)
   };
 
   Newton(Reads reads, Changes changes, Operations ops) : in_(reads), out_(changes), op_(std::move(ops)) {}

@@ -12,6 +12,7 @@ Predictor::~Predictor() {
 void Predictor::release() {
   for (Vec& v : basis_) UGS_PETSC(VecDestroy(&v));
   basis_.clear();
+  weight_.clear();
 }
 
 void Predictor::setup(Vec u) {
@@ -77,13 +78,20 @@ void Predictor::refresh(Mat A) {
   const Eigen::VectorXd lam = es.eigenvalues();
   // coef[t]: the combination of the old directions that gives new direction t (largest eigenvalue first).
   std::vector<std::vector<PetscScalar>> coef;
+  std::vector<double> weight;  // the old directions' weights carried over by the rotation
   for (int k = m - 1; k >= 0; --k) {
     if (!(lam(k) > 1e-10 * lam(m - 1))) break;
     std::vector<PetscScalar> ck(m);
-    for (int i = 0; i < m; ++i) ck[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
+    double wk = 0;
+    for (int i = 0; i < m; ++i) {
+      ck[i] = es.eigenvectors()(i, k) / std::sqrt(lam(k));
+      wk += weight_[static_cast<std::size_t>(i)] * es.eigenvectors()(i, k) * es.eigenvectors()(i, k);
+    }
     coef.push_back(std::move(ck));
+    weight.push_back(wk);
   }
   combine_in_place(coef);
+  weight_ = std::move(weight);
   PetscLogEventEnd(events().predictor, 0, 0, 0, 0);
 }
 
@@ -142,6 +150,9 @@ void Predictor::remember(Mat A, Vec v) {
   for (int pass = 0; pass < 2 && m > 0; ++pass) {
     std::vector<PetscScalar> c(m);
     UGS_PETSC(VecMDot(aw_, m, basis_.data(), c.data()));  // W^T A v
+    // The increment's energy along each direction (first pass: the second only removes rounding).
+    if (pass == 0)
+      for (int i = 0; i < m; ++i) weight_[static_cast<std::size_t>(i)] = kDecay * weight_[static_cast<std::size_t>(i)] + c[i] * c[i];
     for (auto& x : c) x = -x;
     UGS_PETSC(VecMAXPY(v, m, c.data(), basis_.data()));
     UGS_PETSC(MatMult(A, v, aw_));
@@ -153,11 +164,22 @@ void Predictor::remember(Mat A, Vec v) {
     return;
   }
   UGS_PETSC(VecScale(v, 1.0 / std::sqrt(n1)));
+  // Full: the direction the recent increments used least goes. Dropping the oldest instead (until
+  // 2026-11-29) lost the dominant directions, against which every later one was orthogonalized:
+  // the seasonal storage months of the scale-0.1 box were predicted to only 0.1-0.9 of their residual.
   if (static_cast<int>(basis_.size()) == kRecycle) {
-    UGS_PETSC(VecDestroy(&basis_.front()));
-    basis_.erase(basis_.begin());
+    const auto least = std::min_element(weight_.begin(), weight_.end());
+    if (n1 <= *least) {
+      UGS_PETSC(VecDestroy(&v));
+      return;
+    }
+    const auto i = least - weight_.begin();
+    UGS_PETSC(VecDestroy(&basis_[static_cast<std::size_t>(i)]));
+    basis_.erase(basis_.begin() + i);
+    weight_.erase(least);
   }
   basis_.push_back(v);
+  weight_.push_back(n1);
 }
 
 }  // namespace ugs::mech

@@ -30,7 +30,8 @@ class Predictor {
   // Re-orthonormalizes the basis for the current matrix A (after a preconditioner rebuild).
   void refresh(Mat A);
   // Adds the increment v of a converged (sub-)step (its prescribed components zero; the predictor
-  // takes it over), A-orthogonalized against the basis (the oldest direction is dropped when full).
+  // takes it over), A-orthogonalized against the basis. When the basis is full the direction the
+  // recent increments used least goes (or the new one, if it is the least).
   void remember(Mat A, Vec v);
   // Frees the basis (MechanicsSolver::release_linear_system: no step follows).
   void release();
@@ -39,11 +40,16 @@ class Predictor {
 
  private:
   static constexpr int kRecycle = 24;
+  // Per remembered increment, the weights of the older directions decay by this factor.
+  static constexpr double kDecay = 0.9;
   // du = W (W^T r); returns ||r - A du|| / ||r|| (A du in aw_).
   double projection_residual(Mat A, Vec r, Vec du);
   // W <- W C in place: new direction t = sum_i coef[t][i] w_i; the directions past coef.size() go.
   void combine_in_place(const std::vector<std::vector<PetscScalar>>& coef);
   std::vector<Vec> basis_;  // W (A-orthonormal); A W is not kept (recomputed where needed)
+  // Per direction: how much of the recent increments lay along it (their energy in it, c_i^2 with
+  // c = W^T A v, decayed by kDecay per increment).
+  std::vector<double> weight_;
   Vec aw_ = nullptr;        // work vector: A du, A v, A w_j
   Vec like_ = nullptr;  // u: the layout of new basis vectors (not owned)
   double predicted_ = -1;

@@ -178,7 +178,8 @@ struct MechanicsSolver::Impl {
                 Newton::Changes{hyp, u, u_save, du},
                 Newton::Operations{[this](const std::vector<double>& dp) { external_force(dp); },
                                    [this] { return residual(); }, [this] { assemble(); },
-                                   [this](double rtol, bool guess) { return solve(rtol, guess); }}};
+                                   [this](double rtol, bool guess) { return solve(rtol, guess); },
+                                   [this] { return load_norm(); }}};
 
   ~Impl() {
     if (ksp) KSPDestroy(&ksp);
@@ -257,6 +258,7 @@ struct MechanicsSolver::Impl {
 
   // r = f_ext - f_int(u) (zero on prescribed dofs); evaluates the hypo-plastic trial states.
   double residual();
+  double load_norm() const;
 
   // ---- assembly -------------------------------------------------------------------------------
   void scatter(std::vector<double>& v, int c, const std::array<double, 144>& Ke, bool diag_too);

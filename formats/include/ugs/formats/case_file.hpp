@@ -118,6 +118,9 @@ struct CaseFile {
   std::vector<FaultSpec> faults;
   // Solver settings (docs/case-file.md).
   double newton_tolerance = 1e-8;
+  // What newton_tolerance is relative to: "step" (the step's load increment, ||r_0||) or
+  // "total-load" (the larger of ||r_0|| and the whole load ||f_ext|| at the step's date).
+  std::string tolerance_of = "step";
   int max_newton_iterations = 25;
   std::string linear_solver = "cg-hypre";       // ugs-solve; named in ugs/mechanics/case_section.hpp
   std::string inversion_rule = "sigma-max";     // sigma-max | sigma-inversion | stress-dependent

@@ -37,6 +37,13 @@ struct RunSettings {
   std::optional<mech::LinearSolver> linear;  // overrides [solver] linear_solver
   mech::PartitionMethod partition = mech::PartitionMethod::PtScotch;
   std::optional<int> checkpoint_every;    // overrides [output] checkpoint_every
+  std::optional<std::string> steps;       // overrides [solver] steps: every-date | turning-points
+  std::optional<double> tolerance;        // overrides [solver] tolerance
+  std::optional<std::string> tolerance_of;  // overrides [solver] tolerance_of: step | total-load
+  // Windows [from, to] (s since the epoch) where every date of the pressure fields is stepped on
+  // whatever `steps` says: the per-step outputs (top surface, fault table) hold every one of them
+  // (a monthly InSAR window, the storage years of a seismicity forecast).
+  std::vector<std::pair<double, double>> every_date_in;
   FaultSettings faults;
   std::string command_line;               // recorded in the CSV headers
   // Messages (level 0 info, 1 detail, -1 warning) and progress; called on rank 0 only.

@@ -33,10 +33,11 @@ struct StepRule {
   // reported on the dates stepped on: step_dates.hpp).
   mech::TurningRule turning_rule = mech::TurningRule::NewLows;
   std::set<double> must_take;   // times stepped on whatever the rule (the scenario's reference date)
+  std::vector<std::pair<double, double>> every_date_in;  // windows [from, to] stepped on every date
 };
 
 // Rank 0. Every date, or with turning_points the turning points of the pressure, the output dates,
-// `must_take` and the last date.
+// `must_take`, the dates inside `every_date_in` and the last date.
 StepPlan plan_steps(mech::PressureHistory& history, const CaseFile& cs, const StepRule& rule);
 
 // Collective: rank 0's plan on every rank.

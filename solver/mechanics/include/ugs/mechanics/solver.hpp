@@ -45,6 +45,9 @@ struct SolverOptions {
   LinearSolver linear = LinearSolver::CgHypre;
   PartitionMethod partition = PartitionMethod::PtScotch;
   double tolerance = 1e-8;   // Newton: ||r|| <= tolerance ||r_0||
+  // ||r|| <= tolerance max(||r_0||, ||f_ext||) instead: relative to the whole load at the step's
+  // date, not to the step's increment ([solver] tolerance_of = "total-load", docs/mechanics.md).
+  bool tolerance_of_total_load = false;
   int max_newton = 25;
   int max_substeps = 64;
   bool reuse_preconditioner = true;
