@@ -370,14 +370,14 @@ int main(int argc, char** argv) {
       std::printf("reciprocal response model: runs at %s = %s, %s, %s: RMS %.4f, %.4f, %.4f mm\n", n.c_str(), fmt_value(model->x[0]).c_str(),
                   fmt_value(model->x[1]).c_str(), fmt_value(model->x[2]).c_str(), model->rms_mm[0], model->rms_mm[1], model->rms_mm[2]);
       if (!std::isnan(model->curvature_mm))
-        std::printf("  the middle run departs %.4f mm at most from the series affine in 1/%s through the outer two (they differ by up "
+        std::printf("  the middle run departs %.4f mm at most from the series affine in 1/x through the outer two (they differ by up "
                     "to %.4f mm)\n",
-                    model->curvature_mm, n.c_str(), model->response_mm);
+                    model->curvature_mm, model->response_mm);
       if (!std::isnan(model->x_model))
         std::printf("  model minimum %s = %s, RMS %.4f mm predicted\n", n.c_str(), fmt_value(model->x_model).c_str(),
                     model->predicted_rms_mm);
       if (!std::isnan(model->checked_rms_mm))
-        std::printf("  check %s: RMS %.4f mm (check - predicted %+.4f mm)\n",
+        std::printf("  check %s: RMS %.4f mm (check - predicted = %+.2g mm)\n",
                     model->check_is_new_point ? "run" : "(one of the three runs)", model->checked_rms_mm,
                     model->checked_rms_mm - model->predicted_rms_mm);
       if (!model->fallback.empty()) std::printf("  model not used: %s\n", tool.with_flags(model->fallback).c_str());
