@@ -115,6 +115,7 @@ ReciprocalResult calibrate_reciprocal(Evaluator& ev, const std::vector<Parameter
     std::vector<std::pair<double, double>> pts;  // (y, rms)
     for (std::size_t i = first; i < ev.history().size(); ++i) pts.emplace_back(1.0 / ev.history()[i].x[0], ev.history()[i].misfit.rms_mm);
     std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end(), [](const auto& u, const auto& v) { return u.first == v.first; }), pts.end());
     const std::size_t b = static_cast<std::size_t>(
         std::min_element(pts.begin(), pts.end(), [](const auto& u, const auto& v) { return u.second < v.second; }) - pts.begin());
     const double a = b > 0 ? pts[b - 1].first : pts[b].first, c = b + 1 < pts.size() ? pts[b + 1].first : pts[b].first;
