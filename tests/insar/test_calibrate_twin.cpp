@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "run_tool.hpp"
@@ -135,6 +136,54 @@ TEST(CalibrationTwin, OneParameterRecoversCrOfPoolC) {
   ASSERT_EQ(rel.exit_code, 0) << rel.err;
   EXPECT_TRUE(fs::exists(t.dir / "rel" / "out" / "best.toml"));
   EXPECT_EQ(CsvTable::read((t.dir / "rel" / "out" / "profile.csv").string()).rows(), 3u);
+  if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(t.dir);
+}
+
+// --response reciprocal on the same twin: Pool C's cycles stay below its preconsolidation stress
+// over the window, so its compaction there is c_M / c_R times the stress change and the series are
+// affine in 1 / c_R: the model is exact, and three runs and one check find the misfit's minimum,
+// which the scan + Brent of the general method approaches within its xtol (0.005 of the range).
+TEST(CalibrationTwin, ReciprocalResponseRecoversCrInFourRuns) {
+  const Twin t = make_twin("twin-recip");
+  test::spit(t.dir / "case.toml", case_text(4.5, 5.0));
+  const auto r = test::run(calibrate(t, "--param material.pool_c.c_R=2:6", "out", "-j 2 --response reciprocal"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("best (reciprocal response, model minimum checked by one run: RMS ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("; 4 evaluations, 4 solver runs (0 from the cache); "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reciprocal response model: runs at material.pool_c.c_R = 2, 3, 6: RMS "), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  const auto best = best_values(t.dir / "out");
+  ASSERT_EQ(best.size(), 1u);
+  EXPECT_NEAR(best[0], 3.0, 0.3) << r.out;
+  const CsvTable prof = CsvTable::read((t.dir / "out" / "profile.csv").string());
+  ASSERT_EQ(prof.rows(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(prof.text(i, prof.column("phase")), i < 3 ? "reciprocal" : "check");
+    EXPECT_EQ(prof.text(i, prof.column("cached")), "0");
+  }
+  // The check is the best evaluation, and the model predicted its misfit (an exact model).
+  const auto rms = prof.numbers("rms_mm");
+  EXPECT_EQ(*std::min_element(rms.begin(), rms.end()), rms[3]);
+  EXPECT_EQ(prof.number(3, prof.column("material.pool_c.c_R")), best[0]);
+  const auto check = r.out.find("check run: RMS ");
+  ASSERT_NE(check, std::string::npos) << r.out;
+  const auto diff = r.out.find("(check - predicted = ", check);
+  ASSERT_NE(diff, std::string::npos) << r.out;
+  EXPECT_LT(std::abs(std::stod(r.out.substr(diff + 21))), 1e-6) << r.out;
+  EXPECT_NE(test::slurp(t.dir / "out" / "parameters.csv").find("reciprocal response; model minimum checked"), std::string::npos);
+  EXPECT_NE(test::slurp(t.dir / "out" / "best.toml").find("; reciprocal response)"), std::string::npos);
+  EXPECT_EQ(CsvTable::read((t.dir / "out" / "model_profile.csv").string()).rows(), 41u);
+  std::printf("recovered c_R(Pool C) = %.4f (truth 3) in 4 solver runs\n", best[0]);
+
+  // The general method on the same cache (its scan's bounds come from it): Brent's answer within
+  // its tolerance of the model's, and no better.
+  const auto g = test::run(calibrate(t, "--param material.pool_c.c_R=2:6", "general", "-j 2"));
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  const auto brent = best_values(t.dir / "general");
+  EXPECT_NEAR(brent[0], best[0], 0.005 * 4) << g.out;
+  const auto g_rms = CsvTable::read((t.dir / "general" / "profile.csv").string()).numbers("rms_mm");
+  EXPECT_GE(*std::min_element(g_rms.begin(), g_rms.end()), rms[3] - 1e-9);
+  std::printf("scan + Brent: c_R(Pool C) = %.4f in %zu evaluations\n", brent[0], g_rms.size());
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(t.dir);
 }
 

@@ -199,6 +199,28 @@ TEST(CalibrateCli, BadInputs) {
   r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
                 "up.csv --solver-command 'x {case} {out} {mesh}' --param material.pool_c.c_R=2:6 -o " + d + "out");
   EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "--solver-command: uses {mesh} but no solver mesh (--mesh) was given")) << r.err;
+  // --response reciprocal: one parameter with positive linear bounds, its own three runs, four
+  // evaluations at least; refused before any cache exists.
+  r = test::run(base + "--response reciprocal --param material.pool_c.c_R=2:6 --param material.pool_a.c_R=3:8 --cache-dir " + d + "recip.cache");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --response: reciprocal calibrates one parameter, 2 were given (expected one "
+                                                 "parameter to calibrate (--param); several paths sharing one value are one)")) << r.err;
+  r = test::run(base + "--response reciprocal --param material.pool_c.c_R=0:6 --cache-dir " + d + "recip.cache");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --response: reciprocal needs positive bounds, parameter to calibrate (--param) "
+                                                 "material.pool_c.c_R has lower bound 0 (expected 0 < LOWER < UPPER: the model is in 1/x)")) << r.err;
+  r = test::run(base + "--response reciprocal --param material.pool_c.c_R=-1:6 --cache-dir " + d + "recip.cache");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "has lower bound -1")) << r.err;
+  r = test::run(base + "--response reciprocal --param material.pool_c.c_R=2:6:log --cache-dir " + d + "recip.cache");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "asks for :log")) << r.err;
+  r = test::run(base + "--response reciprocal --param material.pool_c.c_R=2:6 --scan 5 --cache-dir " + d + "recip.cache");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --response: reciprocal makes its own three runs (expected no scan values per "
+                                                 "parameter (--scan))")) << r.err;
+  r = test::run(base + "--response reciprocal --param material.pool_c.c_R=2:6 --max-evals 3 --cache-dir " + d + "recip.cache");
+  EXPECT_TRUE(one_line_error(r, "ugs-calibrate", "error: --response: reciprocal needs 4 evaluations, the evaluation budget (--max-evals) "
+                                                 "is 3 (expected at least 4)")) << r.err;
+  r = test::run(base + "--response linear --param material.pool_c.c_R=2:6 --cache-dir " + d + "recip.cache");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--response"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "recip.cache"));
   // A solver that fails: exit 1, naming the evaluation and the log (the shell's ${VAR} is left alone).
   r = test::run(test::tool("ugs-calibrate") + " --case " + d + "case.toml --measured " + d +
                 "up.csv --solver-command 'V=diverged; echo ${V}; exit 3; {case} {out}' --param material.pool_c.c_R=2:6 -o " + d + "out");

@@ -5,9 +5,12 @@
 // removed. Every evaluation writes a modified copy of the case, runs the solver command as a
 // subprocess and samples its result in-process; evaluations are cached by parameter value and run
 // concurrently (-j). A scan of the bounds gives the misfit profile, then Brent's method (one
-// parameter) or NLopt's BOBYQA (several) refines the best value.
+// parameter) or NLopt's BOBYQA (several) refines the best value. With --response reciprocal (one
+// parameter whose series respond affinely to 1/x, as c_R's reloading uplift) three concurrent runs
+// give a model of the series whose misfit minimum one run checks (reciprocal.hpp).
 // Outputs (-o FOLDER): best.toml (the calibrated case), parameters.csv, misfit_points.csv,
-// profile.csv (every evaluation) and best_samples.csv (the best run at the PS dates, as ugs-sample).
+// profile.csv (every evaluation), best_samples.csv (the best run at the PS dates, as ugs-sample)
+// and, with --response reciprocal, model_profile.csv (the modelled misfit over the range).
 //
 //   ugs-calibrate --case case.toml --mesh model.msh --param material.pool_c.c_R,material.aquifer_pool_c.c_R=2:6
 //     --measured insar_vertical.csv --inside reservoir_traces.geojson --window 2003-01-01/2021-12-31
@@ -17,10 +20,12 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "ugs/calibration/evaluator.hpp"
 #include "ugs/calibration/optimizer.hpp"
+#include "ugs/calibration/reciprocal.hpp"
 #include "ugs/cli/number_option.hpp"
 #include "ugs/cli/tool.hpp"
 #include "ugs/formats/csv.hpp"
@@ -55,6 +60,7 @@ struct Options {
   int scan = -1;
   double xtol = 0.005;
   int max_evals = 60;
+  std::string response = "general";
 };
 
 std::string fmt_value(double v) { return fmt::format("{:.6g}", v); }
@@ -99,6 +105,11 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(cli::number_in(0, 1, cli::Ends::OpenLow));
   app.add_option("--max-evals", o.max_evals, "Evaluation budget (scan included)")->capture_default_str()->check(cli::number_in(1, 100000));
+  app.add_option("--response", o.response,
+                 "How the simulated series respond to the parameter: general (scan, then Brent or BOBYQA) or reciprocal "
+                 "(one parameter, series affine in 1/x, e.g. c_R: three concurrent runs, a model, one check run)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"general", "reciprocal"}));
   std::string& output = tool.add_output("calibration", "Output folder");
   // The library names these settings in words; the messages show the flags.
   tool.name_setting("solver command", "--solver-command");
@@ -106,6 +117,7 @@ int main(int argc, char** argv) {
   tool.name_setting("parameter to calibrate", "--param");
   tool.name_setting("scan values per parameter", "--scan");
   tool.name_setting("evaluation budget", "--max-evals");
+  tool.name_setting("response model", "--response");
   tool.name_setting("misfit window", "--window");
   tool.name_setting("PS selection", "--points, --inside");
   tool.name_setting("polygon filter", "--inside-where");
@@ -119,6 +131,12 @@ int main(int argc, char** argv) {
     const CaseTemplate tmpl(o.case_file);
     std::vector<ParameterSpec> params;
     for (const auto& text : o.params) params.push_back(parse_parameter(text));
+    const bool reciprocal = o.response == "reciprocal";
+    OptimizerOptions oo;
+    oo.scan = o.scan;
+    oo.xtol = o.xtol;
+    oo.max_evals = o.max_evals;
+    if (reciprocal) check_reciprocal(params, oo, app.count("--scan") > 0);
     // Every path a number of the case, named once, and a valid case at both bounds (checked in the
     // system's temporary folder: the cache is created only once every input is accepted).
     for (const auto& w : check_parameters(tmpl, params)) cli::warning("{}", w);
@@ -241,13 +259,24 @@ int main(int argc, char** argv) {
     };
 
     // 5. Optimise.
-    OptimizerOptions oo;
-    oo.scan = o.scan;
-    oo.xtol = o.xtol;
-    oo.max_evals = o.max_evals;
-    const OptimizerResult best = optimize(ev, params, oo);
+    std::optional<ReciprocalReport> model;
+    OptimizerResult best;
+    if (reciprocal) {
+      ReciprocalResult r = calibrate_reciprocal(ev, params, oo);
+      best = std::move(r.result);
+      model = std::move(r.report);
+      if (!model->fallback.empty()) cli::warning("the reciprocal model was not used: {}", tool.with_flags(best.stop_reason));
+    } else {
+      best = optimize(ev, params, oo);
+    }
+    const std::size_t evaluations = ev.history().size();
+    const auto solver_runs = static_cast<std::size_t>(
+        std::count_if(ev.history().begin(), ev.history().end(), [](const Evaluation& e) { return !e.cached; }));
     const std::string stop_reason = tool.with_flags(best.stop_reason);  // "evaluation budget (--max-evals) used"
-    if (!best.converged) cli::warning("the optimizer stopped before converging: {}", stop_reason);
+    if (!best.converged && !(model && !model->fallback.empty()))
+      cli::warning("the optimizer stopped before converging: {}", stop_reason);
+    if (model && (best.best_x[0] == params[0].lower || best.best_x[0] == params[0].upper))
+      cli::warning("the best value is the bound {} of the range: the minimum may lie beyond it (widen --param)", fmt_value(best.best_x[0]));
     const Evaluation& be = ev.history()[best.best_index];
     if (!mesh_top)  // located on each results file's own surface: say which points it left out
       for (const auto& p : all_points)
@@ -268,8 +297,8 @@ int main(int argc, char** argv) {
     {
       CsvWriter w(out.file("parameters.csv"), {"parameter", "paths", "best", "lower", "upper", "case_value", "scale"},
                   std::vector<std::string>{tool.command_line(),
-                                           fmt::format("{}; {}; RMS {:.4f} mm at evaluation {} of {}", best.method,
-                                                       stop_reason, best.best_rms_mm, be.index, ev.history().size())});
+                                           fmt::format("{}; {}; RMS {:.4f} mm at evaluation {} of {}; {} solver runs", best.method,
+                                                       stop_reason, best.best_rms_mm, be.index, evaluations, solver_runs)});
       for (std::size_t i = 0; i < params.size(); ++i) {
         std::string paths;
         for (const auto& p : params[i].paths) paths += (paths.empty() ? "" : ";") + p;
@@ -320,6 +349,15 @@ int main(int argc, char** argv) {
       write_samples_csv(out.file("best_samples.csv"), sm, {},
                         {tool.command_line(), "best evaluation " + be.entry + ", relative to " + format_iso_date(ref)});
     }
+    if (model) {
+      // The modelled misfit over the range (what the three runs predict), for plots next to profile.csv.
+      CsvWriter w(out.file("model_profile.csv"), {params[0].name, "rms_mm"},
+                  std::vector<std::string>{
+                      "misfit of the series modelled as quadratic in 1/x through the runs at " + fmt_value(model->x[0]) + ", " +
+                      fmt_value(model->x[1]) + ", " + fmt_value(model->x[2]) + " (--response reciprocal)"});
+      for (const auto& [x, rms] : model->profile) w.number(x).number(rms, 6).end_row();
+      w.commit();
+    }
     out.commit();
 
     // 7. The answer, on stdout.
@@ -327,9 +365,24 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < params.size(); ++i)
       std::printf("  %s = %s   [%g, %g]\n", params[i].name.c_str(), fmt_value(best.best_x[i]).c_str(), params[i].lower,
                   params[i].upper);
-    std::printf("RMS misfit %.3f mm over %zu values; %zu evaluations (%zu from the cache); outputs in %s\n", best.best_rms_mm,
-                be.misfit.n, ev.history().size(),
-                static_cast<std::size_t>(std::count_if(ev.history().begin(), ev.history().end(), [](const Evaluation& e) { return e.cached; })),
-                out.target().string().c_str());
+    if (model) {
+      const std::string& n = params[0].name;
+      std::printf("reciprocal response model: runs at %s = %s, %s, %s: RMS %.4f, %.4f, %.4f mm\n", n.c_str(), fmt_value(model->x[0]).c_str(),
+                  fmt_value(model->x[1]).c_str(), fmt_value(model->x[2]).c_str(), model->rms_mm[0], model->rms_mm[1], model->rms_mm[2]);
+      if (!std::isnan(model->curvature_mm))
+        std::printf("  the middle run departs %.4f mm at most from the series affine in 1/x through the outer two (they differ by up "
+                    "to %.4f mm)\n",
+                    model->curvature_mm, model->response_mm);
+      if (!std::isnan(model->x_model))
+        std::printf("  model minimum %s = %s, RMS %.4f mm predicted\n", n.c_str(), fmt_value(model->x_model).c_str(),
+                    model->predicted_rms_mm);
+      if (!std::isnan(model->checked_rms_mm))
+        std::printf("  check %s: RMS %.4f mm (check - predicted = %+.2g mm)\n",
+                    model->check_is_new_point ? "run" : "(one of the three runs)", model->checked_rms_mm,
+                    model->checked_rms_mm - model->predicted_rms_mm);
+      if (!model->fallback.empty()) std::printf("  model not used: %s\n", tool.with_flags(model->fallback).c_str());
+    }
+    std::printf("RMS misfit %.3f mm over %zu values; %zu evaluations, %zu solver runs (%zu from the cache); outputs in %s\n",
+                best.best_rms_mm, be.misfit.n, evaluations, solver_runs, evaluations - solver_runs, out.target().string().c_str());
   });
 }

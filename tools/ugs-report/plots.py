@@ -347,7 +347,7 @@ def plot_profile(m, fig):
     for i, name in enumerate(params):
         ax = f.add_subplot(1, len(params), i + 1)
         x = np.array([float(r[header.index(name)]) for r in rows])
-        for ph, marker in (("scan", "o"), ("brent", "s"), ("bobyqa", "D")):
+        for ph, marker in (("scan", "o"), ("brent", "s"), ("bobyqa", "D"), ("reciprocal", "^"), ("check", "v")):
             k = np.array([p == ph for p in phase])
             if k.any():
                 ax.plot(x[k], rms[k], marker, ls="none", ms=5, label=ph)

@@ -81,6 +81,9 @@ public:
   std::string entry_name(const std::vector<double>& x) const;
   std::string key(const std::vector<double>& x) const;
   const SimulatedSeries& series_of(const Evaluation& e);  // from the cache entry
+  // The misfit of any series with the points and dates of an evaluation's (e.g. a model's
+  // prediction between runs), as an evaluation's is taken.
+  insar::Misfit misfit_of(const SimulatedSeries& s) const { return setup_.misfit(s); }
   // What the key covers, one input a line (written to each entry's inputs.txt).
   const std::string& inputs_description() const { return runs_.inputs_description(); }
 

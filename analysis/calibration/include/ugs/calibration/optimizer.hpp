@@ -7,7 +7,7 @@
 //      grid cells next to the best point;
 //    - several: NLopt's BOBYQA (Powell 2009: bounded quadratic models), initial step half a grid cell.
 // Parameters are searched on [0, 1] (linear, or log10 for ":log" parameters); xtol is relative to
-// that range.
+// that range. One parameter whose series respond affinely to 1/x: reciprocal.hpp (four runs).
 #pragma once
 #include <string>
 #include <vector>
