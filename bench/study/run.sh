@@ -13,7 +13,7 @@ export OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
 rm -rf "$out"; mkdir -p "$out"
 export STUDY_TIMES=$out/times.tsv
 : > "$STUDY_TIMES"
-echo "machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2 / 1048576}' /proc/meminfo), load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "machine: $(nproc --all) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2 / 1048576}' /proc/meminfo), load $(cut -d' ' -f1-3 /proc/loadavg)"
 # Memory of the whole study: the sum over its processes, sampled every 2 s.
 ( peak=0; while sleep 2; do
     s=$(ps -e -o rss=,comm= | awk '$2 ~ /^ugs-/ {t += $1} END {print t + 0}')
