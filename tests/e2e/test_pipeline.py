@@ -16,6 +16,10 @@ run:
     so at the depth of the depleted pools (the stress change is largest at the reservoir's edges);
   * c_R(Pool C) recovered by the calibration: the InSAR twin was made by the solver with c_R = 3
     (data-samples/po-plain/README.md) on the demo mesh; on the tiny mesh within +-0.6;
+  * the seismicity forecast over 2025-2033 (docs/seismicity.md) from the faulted history: every fault of
+    the case has a finite, positive expected count, the background rate r x area at the geostatic start
+    (R/r = 1 exactly where the Coulomb stress change is 0), P = 1 - exp(-N), Gutenberg-Richter between
+    the magnitudes, the sum over the faults, and the report's headline rows holding those counts;
   * Make reruns only what an edit affects (a raster -> the mesh and what follows, not the plan).
 """
 
@@ -123,6 +127,60 @@ def value(rows, group_prefix, quantity):
     raise KeyError(f"no headline '{group_prefix}' / '{quantity}'")
 
 
+def data_rows(path):
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(row for row in fh if not row.startswith("#")))
+
+
+def check_forecast(out, case, rows, summary):
+    """The rate-and-state forecast of the faulted history and its headline rows in the report."""
+    seis = case["seismicity"]
+    faults = [f["name"] for f in case["fault"]]
+    r_km2, b, mc = seis["background_rate_per_yr_km2"], seis.get("b_value", 1.0), seis["M_c"]
+    for f in ("forecast.csv", "forecast_windows.csv", "forecast_pairs.csv", "report/seismicity_rate_series.png",
+              "report/seismicity_density.png"):
+        check(os.path.isfile(os.path.join(out, f)), f"{f} written")
+    path = os.path.join(out, "forecast.csv")
+    with open(path) as fh:
+        area = {line.split(":")[0][len("# fault "):]: float(line.rsplit("area_km2 = ", 1)[1])
+                for line in fh if line.startswith("# fault ")}
+    check(sorted(area) == sorted(faults) and all(a > 0 for a in area.values()),
+          f"forecast.csv: every fault of the case with its area ({', '.join(f'{k} {v:.3g} km2' for k, v in sorted(area.items()))})")
+    series = data_rows(path)
+    first = [r for r in series if r["date"] == "1950-01-01"]
+    check(len(first) == len(faults) and all(float(r["cfs_change_mean_MPa"]) == 0 and float(r["R_over_r"]) == 1 and
+                                            abs(float(r["rate_per_yr"]) - r_km2 * area[r["fault"]]) <= 1e-12 * r_km2 * area[r["fault"]]
+                                            for r in first),
+          "1950-01-01: dCFS 0, R/r = 1 and the rate r x area on every fault (the steady state)")
+    check(all(math.isfinite(float(r[k])) and float(r[k]) >= 0 for r in series
+              for k in ("R_over_r", "R_over_r_max", "rate_per_yr", "events_from_start")),
+          f"forecast.csv: {len(series)} rows, every R/r, rate and count finite and >= 0")
+    win = data_rows(os.path.join(out, "forecast_windows.csv"))
+    count = {(r["fault"], float(r["magnitude"])): float(r["expected_events"]) for r in win
+             if (r["start"], r["end"]) == ("2025-01-01", "2033-01-01")}
+    n = {f: count.get((f, mc), float("nan")) for f in faults}
+    check(all(math.isfinite(v) and v > 0 for v in n.values()),
+          "expected events M >= %g over 2025-2033 finite and > 0 on every fault: %s" % (
+              mc, ", ".join(f"{f} {v:.3g}" for f, v in n.items())))
+    total = count.get(("all", mc), float("nan"))
+    check(abs(total - sum(n.values())) <= 1e-12 * total, f"all faults: {total:.4g} = the sum over the faults")
+    check(all(abs(float(r["p_at_least_one"]) - -math.expm1(-float(r["expected_events"]))) <= 1e-12 for r in win),
+          "P(at least one) = 1 - exp(-N) in every row")
+    for m in seis.get("magnitudes", []):
+        nm = count.get(("all", float(m)), float("nan"))
+        ref = total * 10 ** (-b * (m - mc))
+        check(abs(nm - ref) <= 1e-12 * ref, f"expected events M >= {m:g}: {nm:.4g} = Gutenberg-Richter {ref:.4g}")
+    group = "seismicity, 2025-01-01 to 2033-01-01"
+    for f in faults:
+        q = f"expected events M ≥ {mc:g}, {f}"
+        got = [float(r["value_number"]) for r in rows if r["group"] == group and r["quantity"] == q]
+        check(len(got) == 1 and abs(got[0] - n[f]) <= 5e-3 * n[f], f"headline '{q}' = {n[f]:.3g} ({got})")
+    q = "expected events M ≥ 2, all faults"
+    got = [float(r["value_number"]) for r in rows if r["group"] == group and r["quantity"] == q]
+    n2 = count.get(("all", 2.0), float("nan"))
+    check(len(got) == 1 and abs(got[0] - n2) <= 5e-3 * n2 and q in summary, f"headline and summary '{q}' = {n2:.3g}")
+
+
 def main():
     build = os.path.abspath(sys.argv[1])
     out = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(build, "e2e-tiny")
@@ -140,7 +198,7 @@ def main():
     check(f"the report is {out}/report/summary.md" in r.stdout, "make demo prints where the report is")
 
     for f in ("model.msh", "faulted.msh", "pool_a_dp.h5", "pool_c_dp.h5", "solve.h5", "solve.xdmf", "solve_top.h5",
-              "faulted_faults.h5", "faulted_faults.xdmf", "faulted_faults.csv", "samples.csv",
+              "faulted_faults.h5", "faulted_faults.xdmf", "faulted_faults.csv", "faulted_history.h5", "samples.csv",
               "calibration/best.toml", "report/summary.md", "report/summary.html", "report/headlines.csv"):
         check(os.path.isfile(os.path.join(out, f)), f"{f} written")
     pngs = [f for f in os.listdir(os.path.join(out, "report")) if f.endswith(".png")]
@@ -189,6 +247,8 @@ def main():
         lo, hi = min(bases) - 500.0, max(tops) + 500.0
         check(all(lo <= z <= hi for z in slip_z),
               f"{name} slips only at the pools' depth ({len(slip_z)} dates with slip, z in [{lo:.0f}, {hi:.0f}] m)")
+
+    check_forecast(out, case, rows, summary)
 
     with open(os.path.join(out, "calibration", "best.toml"), "rb") as fh:
         best = tomllib.load(fh)

@@ -174,6 +174,37 @@ TEST(EnsembleFaultPairs, ExceedancePerPairMismatchAndReportMap) {
   EXPECT_EQ(*std::min_element(oz.begin(), oz.end()), -1520.0);
   EXPECT_EQ(*std::max_element(oz.begin(), oz.end()), -1500.0);
 
+  // 3b. The seismicity metrics' quantiles (ugs-ensemble --seismic-window) as headlines: P50 (P10 - P90),
+  // P(event) on every fault, the count and the other magnitudes for all faults; chi_max rows are not
+  // seismicity headlines.
+  fs::create_directories(dir / "seismic");
+  fs::copy_file(dir / "out" / "members.csv", dir / "seismic" / "members.csv");
+  test::spit(dir / "seismic" / "quantiles.csv",
+             "metric,n,mean,p10,p50,p90,min,max\n"
+             "chi_max.F1,4,0.5,0.3,0.5,0.7,0.2,0.8\n"
+             "seismic_events.F1.forecast,4,1,0.5,1,2,0.25,3\n"
+             "seismic_events.all.forecast,4,12.5,10.25,12.5,14.75,9,16\n"
+             "p_event.F1.forecast,4,0.5,0.375,0.625,0.875,0.25,0.9\n"
+             "p_event.all.forecast,4,0.9,0.75,0.875,0.9375,0.5,1\n"
+             "p_event_M2.F1.forecast,4,0.1,0.05,0.1,0.2,0.01,0.3\n"
+             "p_event_M2.all.forecast,4,0.5,0.25,0.5,0.75,0.125,0.875\n");
+  const auto rs3 = test::run(test::tool("ugs-report") + " --results " + (dir / "template.h5").string() + " --mesh " +
+                             (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() + " --ensemble " +
+                             (dir / "seismic").string() + " -o " + (dir / "report_seismic").string());
+  ASSERT_EQ(rs3.exit_code, 0) << rs3.err;
+  const CsvTable hl = CsvTable::read((dir / "report_seismic" / "headlines.csv").string());
+  std::map<std::string, std::pair<std::string, double>> seismic;  // quantity -> value text, value_number
+  for (std::size_t i = 0; i < hl.rows(); ++i)
+    if (hl.text(i, hl.column("group")) == "ensemble, seismicity window forecast")
+      seismic[std::string(hl.text(i, hl.column("quantity")))] = {std::string(hl.text(i, hl.column("value"))),
+                                                                  hl.number(i, hl.column("value_number"))};
+  const std::map<std::string, std::pair<std::string, double>> expected{
+      {"expected events M ≥ M_c, all faults: P50 (P10 - P90) of 4 members", {"12.5 (10.2 - 14.8)", 12.5}},
+      {"P(event M ≥ M_c) on F1: P50 (P10 - P90) of 4 members", {"0.625 (0.375 - 0.875)", 0.625}},
+      {"P(event M ≥ M_c) on all faults: P50 (P10 - P90) of 4 members", {"0.875 (0.75 - 0.938)", 0.875}},
+      {"P(event M ≥ 2), all faults: P50 (P10 - P90) of 4 members", {"0.5 (0.25 - 0.75)", 0.5}}};
+  EXPECT_EQ(seismic, expected);
+
   // 4. Two faults whose names differ only in case (F2 renamed f1): their work files stay apart,
   // F1 (first in byte order) keeps the plain stem f1, f1 gets f1_2.
   fs::create_directories(dir / "cased");

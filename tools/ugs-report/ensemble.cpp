@@ -1,7 +1,8 @@
 // The ensemble's pictures, from an ugs-ensemble output folder (docs/ensemble.md): a tornado chart
 // of the sensitivity indices (sobol.csv: S1 and ST with their intervals; morris.csv: mu* and sigma)
 // and fan charts of the PS series (ps_series.csv: the P10-P90 band and P50 of the members against
-// the InSAR series), with the exceedance probabilities of chi as headlines, and maps of P(chi >= 1)
+// the InSAR series), with the exceedance probabilities of chi and the seismicity metrics' quantiles
+// (P(event), expected events) as headlines, and maps of P(chi >= 1)
 // and P(chi >= 0.8) on each fault plane (chi_exceedance_pairs.csv, the rows over all dates), drawn
 // as ugs-report's single-run chi maps. The CSVs are copied to the work folder as they are: the
 // figures plot exactly the files people read.
@@ -92,6 +93,28 @@ void exceedance_maps(Context& c, const CsvTable& t) {
   }
 }
 
+// The seismicity metrics' spread over the members (quantiles.csv, docs/ensemble.md):
+// seismic_events.<fault>.<window>, p_event.<fault>.<window> and p_event_M<m>.<fault>.<window> as
+// "P50 (P10 - P90)". P(event >= M_c) for every fault, the counts and the other magnitudes for all faults.
+void seismic_headlines(Context& c, const CsvTable& q) {
+  const auto cm = q.column("metric"), cn = q.column("n"), c10 = q.column("p10"), c50 = q.column("p50"), c90 = q.column("p90");
+  for (std::size_t r = 0; r < q.rows(); ++r) {
+    const std::string metric(q.text(r, cm));
+    if (q.text(r, c50).empty()) continue;  // no successful member
+    const auto first = metric.find('.'), last = metric.rfind('.');
+    if (first == std::string::npos || last <= first) continue;
+    const std::string kind = metric.substr(0, first), fault = metric.substr(first + 1, last - first - 1), window = metric.substr(last + 1);
+    std::string what;
+    if (kind == "seismic_events" && fault == "all") what = "expected events M ≥ M_c, all faults";
+    else if (kind == "p_event") what = fmt::format("P(event M ≥ M_c) on {}", fault == "all" ? "all faults" : fault);
+    else if (kind.rfind("p_event_M", 0) == 0 && fault == "all") what = fmt::format("P(event M ≥ {}), all faults", kind.substr(9));
+    else continue;
+    c.headlines.push_back({fmt::format("ensemble, seismicity window {}", window),
+                           fmt::format("{}: P50 (P10 - P90) of {} members", what, q.text(r, cn)),
+                           fmt::format("{:.3g} ({:.3g} - {:.3g})", q.number(r, c50), q.number(r, c10), q.number(r, c90)), ""});
+  }
+}
+
 }  // namespace
 
 void build_ensemble(Context& c) {
@@ -108,6 +131,7 @@ void build_ensemble(Context& c) {
                              fmt::format("{:.2f}, {:.2f}", ex.number(r, ex.column("p_chi_ge_0.8")), ex.number(r, ex.column("p_chi_ge_1"))),
                              ""});
   }
+  if (fs::exists(dir / "quantiles.csv")) seismic_headlines(c, CsvTable::read((dir / "quantiles.csv").string()));
   if (fs::exists(dir / "chi_exceedance_pairs.csv")) exceedance_maps(c, CsvTable::read((dir / "chi_exceedance_pairs.csv").string()));
   for (const char* method : {"sobol", "morris"}) {
     const fs::path p = dir / (std::string(method) + ".csv");
