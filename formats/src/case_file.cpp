@@ -456,10 +456,11 @@ void read_solver(const TomlTable& root, CaseFile& c, const Collect& ok) {
   });
   ok([&] {
     const std::string steps = s->string_opt("steps").value_or("every-date");
-    if (steps != "every-date" && steps != "turning-points") throw s->error("steps", "must be one of every-date, turning-points");
+    if (steps != "every-date" && steps != "turning-points" && steps != "turning-windows")
+      throw s->error("steps", "must be one of every-date, turning-points, turning-windows");
     c.steps = steps;
-    if (rule_read && c.steps == "turning-points" && c.inversion_rule != "sigma-max")
-      throw s->error("steps", "turning-points needs inversion_rule = \"sigma-max\" (the other rules depend on the whole path)");
+    if (rule_read && c.steps != "every-date" && c.inversion_rule != "sigma-max")
+      throw s->error("steps", c.steps + " needs inversion_rule = \"sigma-max\" (the other rules depend on the whole path)");
   });
   ok([&] { c.fault_solver = s->string_opt("fault_solver").value_or("auto"); });  // checked by ugs/contact/case_section.hpp
 }

@@ -102,3 +102,68 @@ TEST(TurningPointExtremes, ContainEveryNewLow) {
   EXPECT_GT(n_lows, 0);
   EXPECT_GT(n_all, n_lows);
 }
+
+// Turning windows (steps = "turning-windows"): a turn is secured by any date where its element is
+// within the tolerance of its extreme; the fewest dates that meet every window.
+TEST(TurnWindows, AFlatLowHasAWideWindow) {
+  const std::vector<std::vector<double>> h{{0}, {-2e6}, {-3e6}, {-3e6 + 500}, {-3e6 + 800}, {-1e6}, {-1e6}};
+  TurningPoints tp(1e3);
+  for (const auto& dp : h) tp.add(dp);
+  ASSERT_EQ(tp.turn_list().size(), 1u);
+  EXPECT_EQ(tp.turn_list()[0].date, 2);
+  EXPECT_EQ(tp.turn_list()[0].last_within, 4);
+  ugs::mech::TurnWindows tw(tp.turn_list(), 1, 1e3);
+  for (const auto& dp : h) tw.add(dp);
+  ASSERT_EQ(tw.windows().size(), 1u);
+  EXPECT_EQ(tw.windows()[0].first, 2);
+  EXPECT_EQ(tw.windows()[0].last, 4);
+}
+
+TEST(TurnWindows, AWindowStartsBeforeTheLowWhenThePressureIsAlreadyWithinIt) {
+  // -3e6 + 900 on date 1 is within 1 kPa of the low -3e6 on date 2: the window is [1, 2].
+  const std::vector<std::vector<double>> h{{0}, {-3e6 + 900}, {-3e6}, {-1e6}};
+  TurningPoints tp(1e3);
+  for (const auto& dp : h) tp.add(dp);
+  ugs::mech::TurnWindows tw(tp.turn_list(), 1, 1e3);
+  for (const auto& dp : h) tw.add(dp);
+  ASSERT_EQ(tw.windows().size(), 1u);
+  EXPECT_EQ(tw.windows()[0].first, 1);
+  EXPECT_EQ(tw.windows()[0].last, 2);
+}
+
+TEST(FewestDates, OneDateServesOverlappingWindowsAndForcedDatesCountFirst) {
+  using ugs::mech::fewest_dates;
+  const std::vector<ugs::mech::TurnWindow> w{{1, 4}, {3, 6}, {5, 8}};
+  EXPECT_EQ(fewest_dates(w, std::vector<char>(10, 0)), (std::vector<char>{0, 0, 0, 0, 1, 0, 0, 0, 1, 0}));
+  // Date 5 is stepped on anyway: it meets [3, 6] and [5, 8]; [1, 4] still needs one.
+  std::vector<char> forced(10, 0);
+  forced[5] = 1;
+  EXPECT_EQ(fewest_dates(w, forced), (std::vector<char>{0, 0, 0, 0, 1, 1, 0, 0, 0, 0}));
+}
+
+TEST(FewestDates, LaggingRingsNeedFewerDatesAndEveryLowIsSecured) {
+  // 40 rings, each a slow cosine low lagging the previous by one date: 40 turns. Near its low a
+  // ring stays within 10 kPa for 3 dates (2.74 kPa x dates^2), so a date serves about 3 rings.
+  const double tol = 1e4;
+  std::vector<std::vector<double>> h;
+  for (int k = 0; k < 120; ++k) {
+    std::vector<double> dp;
+    for (int r = 0; r < 40; ++r) dp.push_back(-2e6 * (1 - std::cos(6.283185307179586 * (k - r) / 120.0)));
+    h.push_back(dp);
+  }
+  TurningPoints tp(tol);
+  for (const auto& dp : h) tp.add(dp);
+  ugs::mech::TurnWindows tw(tp.turn_list(), 40, tol);
+  for (const auto& dp : h) tw.add(dp);
+  const auto take = ugs::mech::fewest_dates(tw.windows(), std::vector<char>(h.size(), 0));
+  int turns = 0, dates = 0;
+  for (std::size_t k = 0; k < h.size(); ++k) turns += tp.turns()[k], dates += take[k];
+  EXPECT_GT(turns, 30);
+  EXPECT_LE(dates, turns / 2);
+  for (const auto& t : tp.turn_list()) {
+    bool secured = false;
+    for (std::size_t k = 0; k < h.size(); ++k)
+      secured = secured || (take[k] && h[k][static_cast<std::size_t>(t.element)] <= t.value + tol);
+    EXPECT_TRUE(secured) << "element " << t.element << " low on date " << t.date;
+  }
+}

@@ -120,9 +120,10 @@ int main(int argc, char** argv) {
   app.add_option("--solver", a.solver, "Linear solver: cg-hypre (default), cg-gamg, mumps, cholmod (overrides the case)")
       ->check(CLI::IsMember(names_of(linear_solver_names())));
   app.add_option("--steps", a.steps,
-                 "Dates stepped on: every-date, or turning-points (those that set the state, the output dates, the last "
-                 "date; sigma-max only) (overrides the case)")
-      ->check(CLI::IsMember({"every-date", "turning-points"}));
+                 "Dates stepped on: every-date; turning-points (those that set the state, the output dates, the last "
+                 "date; sigma-max only); turning-windows (the fewest dates within the turning-point tolerance of every "
+                 "turn) (overrides the case)")
+      ->check(CLI::IsMember({"every-date", "turning-points", "turning-windows"}));
   app.add_option("--every-date-in", a.every_date_in,
                  "FROM/TO (ISO 8601): also step on every date of the pressure fields in this window, so that the "
                  "top-surface table and the fault table hold each (repeatable)")

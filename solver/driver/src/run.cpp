@@ -172,9 +172,9 @@ private:
       set_.max_newton = R.cs.max_newton_iterations;
       set_.max_substeps = R.cs.max_substeps;
       set_.reuse = R.cs.reuse_preconditioner ? 1 : 0;
-      if (o_.steps == "turning-points" && R.cs.inversion_rule != "sigma-max")
-        throw InputError("--steps", fmt::format("turning-points needs inversion_rule = \"sigma-max\" ({} has \"{}\": the other "
-                                                "rules depend on the whole path)", R.cs.path, R.cs.inversion_rule));
+      if (o_.steps && *o_.steps != "every-date" && R.cs.inversion_rule != "sigma-max")
+        throw InputError("--steps", fmt::format("{} needs inversion_rule = \"sigma-max\" ({} has \"{}\": the other "
+                                                "rules depend on the whole path)", *o_.steps, R.cs.path, R.cs.inversion_rule));
       if (R.model.top_nodes.empty()) log_later(-1, "the mesh has no bnd:top group: no top-surface table is written");
       if (o_.restart) {
         R.restart = mech::read_state(*o_.restart, R.mesh, R.restart_date, R.restart_time);
@@ -203,7 +203,9 @@ private:
       rule.after = R.restart_time;
       if (o_.until) rule.until = *o_.until;
       rule.checkpoint_every = o_.checkpoint_every.value_or(R.cs.checkpoint_every);
-      rule.turning_points = o_.steps.value_or(R.cs.steps) == "turning-points";
+      const std::string steps = o_.steps.value_or(R.cs.steps);
+      rule.turning_points = steps == "turning-points" || steps == "turning-windows";
+      rule.fewest = steps == "turning-windows";
       rule.every_date_in = o_.every_date_in;
       rule.turning_tolerance = R.cs.turning_point_tolerance;
       if (faulted()) rule.turning_rule = mech::TurningRule::Extremes;

@@ -13,15 +13,19 @@ StepPlan plan_steps(mech::PressureHistory& history, const CaseFile& cs, const St
   const auto& steps = history.steps();
   std::vector<char> take(steps.size(), 1);
   if (rule.turning_points) {
-    take = mech::turning_points(history, rule.turning_tolerance, rule.turning_rule);
+    // The dates stepped on whatever the turns (output dates, must_take, the windows, the last one,
+    // the restart's) go in first: a turn whose window holds one of them needs no date of its own.
+    std::vector<char> forced(steps.size(), 0);
     std::size_t last = steps.size();
     for (std::size_t k = 0; k < steps.size(); ++k) {
       if (steps[k].time <= rule.until) last = k;
-      if (out_times.count(steps[k].time) || rule.must_take.count(steps[k].time)) take[k] = 1;
+      if (out_times.count(steps[k].time) || rule.must_take.count(steps[k].time) || steps[k].time == rule.after)
+        forced[k] = 1;
       for (const auto& [from, to] : rule.every_date_in)
-        if (steps[k].time >= from && steps[k].time <= to) take[k] = 1;
+        if (steps[k].time >= from && steps[k].time <= to) forced[k] = 1;
     }
-    if (last < steps.size()) take[last] = 1;
+    if (last < steps.size()) forced[last] = 1;
+    take = mech::turning_points(history, rule.turning_tolerance, rule.turning_rule, std::move(forced), rule.fewest);
   }
   StepPlan plan;
   int since_checkpoint = 0;

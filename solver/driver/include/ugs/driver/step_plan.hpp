@@ -27,7 +27,8 @@ struct StepRule {
   double after = -1e300;        // the restart time: later dates only
   double until = 1e300;         // the last date to step on
   int checkpoint_every = 0;     // also a checkpoint every N steps (0: output dates only)
-  bool turning_points = false;  // [solver] steps = "turning-points"
+  bool turning_points = false;  // [solver] steps = "turning-points" or "turning-windows"
+  bool fewest = false;          // "turning-windows": the fewest dates within the tolerance of every turn
   double turning_tolerance = 0; // [Pa]
   // New lows for the continuous model; every extremum, low or high, for a faulted one (its chi is
   // reported on the dates stepped on: step_dates.hpp).

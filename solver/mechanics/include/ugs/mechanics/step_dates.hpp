@@ -22,7 +22,26 @@ namespace ugs::mech {
 // the previous extremum (0 at the start) by more than `tolerance`, and then moves back from its
 // value by more than `tolerance`. Between two steps every element's pressure is then monotonic.
 // Every turning point of NewLows is one of Extremes.
+//
+// A turn need not be stepped on at its own date: every date around it where the element stays
+// within `tolerance` of its extreme value (its window) secures the extreme to the same tolerance.
+// Aquifer rings that reach their lows one month after another, slowly, have wide overlapping
+// windows, and one date inside all of them serves them all: with `fewest`, `turning_points` steps
+// on the fewest dates that meet every window (TurnWindows, fewest_dates; `steps = "turning-windows"`).
 enum class TurningRule { NewLows, Extremes };
+
+// One turn of one element: the date of its extreme `value` [Pa], low (sign -1) or high (+1), and
+// the last date before the element moved back from it by more than the tolerance.
+struct Turn {
+  std::int32_t element = 0, date = 0, last_within = 0;
+  double value = 0;
+  std::int8_t sign = -1;
+};
+
+// The dates, first to last, around a turn where the element is within the tolerance of it.
+struct TurnWindow {
+  std::int32_t first = 0, last = 0;
+};
 
 class TurningPoints {
 public:
@@ -31,6 +50,8 @@ public:
   void add(const std::vector<double>& dp);
   // One flag per date added: a turning point.
   const std::vector<char>& turns() const { return turns_; }
+  // Every turn found, in the order found.
+  const std::vector<Turn>& turn_list() const { return list_; }
 
 private:
   void add_new_lows(const std::vector<double>& dp, std::int32_t k);
@@ -46,9 +67,36 @@ private:
   // Extremes, per element: the direction since the last extremum (-1 falling, +1 rising, 0 not yet
   // left the start by `tolerance`) and the extreme value since, with its date (in low_, low_date_).
   std::vector<std::int8_t> direction_;
+  std::vector<Turn> list_;
 };
 
-// The turning points of a whole pressure history: one flag per step of `history`.
-std::vector<char> turning_points(PressureHistory& history, double tolerance, TurningRule rule = TurningRule::NewLows);
+// The windows of the turns: a second pass over the same dates finds where each window starts (it
+// ends with the turn's last_within).
+class TurnWindows {
+public:
+  TurnWindows(std::vector<Turn> turns, std::size_t elements, double tolerance);
+  // The pressure change per element at the next date, as given to TurningPoints.
+  void add(const std::vector<double>& dp);
+  const std::vector<TurnWindow>& windows() const { return windows_; }
+
+private:
+  std::vector<Turn> turns_;              // by element, then date
+  std::vector<std::int64_t> next_, end_;  // per element: its next turn in turns_, one past its last
+  std::vector<std::int32_t> run_start_;  // per element: first date of the run within the tolerance (-1: none)
+  std::vector<TurnWindow> windows_;
+  double tolerance_;
+  std::int32_t date_ = 0;
+};
+
+// The fewest dates that meet every window, the `forced` ones (a flag per date) counted first: the
+// greedy choice of the earliest-ending unmet window's last date, optimal for intervals. One flag
+// per date, the forced ones included.
+std::vector<char> fewest_dates(std::vector<TurnWindow> windows, std::vector<char> forced);
+
+// The dates of a whole pressure history a run steps on for its turns, one flag per step of
+// `history`, `forced` (one flag per step, or empty) included: the turning points themselves, or
+// with `fewest` the fewest dates that meet every turn's window.
+std::vector<char> turning_points(PressureHistory& history, double tolerance, TurningRule rule = TurningRule::NewLows,
+                                 std::vector<char> forced = {}, bool fewest = false);
 
 }  // namespace ugs::mech
