@@ -7,7 +7,7 @@ import re
 STAGES = [  # (stage, regex on the command line), first match wins
     ("plans, meshes, faults", r"ugs-mesh2d|ugs-meshgen|ugs-meshinfo|ugs-faultinsert|fault_refinement"),
     ("flow sub-meshes and pressures", r"ugs-submesh|ugs-flow"),
-    ("faulted history", r"ugs-solve \S*faulted\.msh"),
+    ("faulted model (safe scale, stress history)", r"ugs-solve \S*faulted\.msh"),
     ("calibration", r"ugs-calibrate"),
     ("continuous 1950-1964 (production)", r"ugs-solve .*--until 1964-04-01"),
     ("continuous 1964-2033", r"ugs-solve .*--restart"),
@@ -27,6 +27,7 @@ def main():
     ap.add_argument("--linear-rss-kB", type=float, required=True)
     ap.add_argument("--linear-log", required=True)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--scale", default="full")
     a = ap.parse_args()
     rows = {}
     for line in open(a.times):
@@ -55,7 +56,7 @@ def main():
     cpu = sum(r["cpu"] for r in rows.values())
     ratio = a.study_wall / a.linear_wall
     out += ["",
-            f"study (make demo SCALE=full): wall {a.study_wall:.0f} s ({a.study_wall / 60:.1f} min; target 60 min), CPU {cpu:.0f} s, "
+            f"study (make demo SCALE={a.scale}): wall {a.study_wall:.0f} s ({a.study_wall / 60:.1f} min; target 60 min), CPU {cpu:.0f} s, "
             f"peak resident memory of all its processes {a.rss_peak_kB / 1048576:.2f} GB (target 16 GB)",
             f"one linear elastic solve of the same mesh ({nodes.group(1) if nodes else '?'} nodes, one process): wall "
             f"{a.linear_wall:.1f} s" + (f" (reading {m.group(1)} s, setup {m.group(2)} s, solving {m.group(3)} s, "
