@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -253,6 +254,19 @@ double tet_signed_volume(const Point3& a, const Point3& b, const Point3& c, cons
   const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
   const double wx = d[0] - a[0], wy = d[1] - a[1], wz = d[2] - a[2];
   return (ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx)) / 6.0;
+}
+
+// The same operations as solver/fem/src/tet4.cpp, so that the two agree on a tetrahedron at the limit.
+double tet_volume_ratio(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  const double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+  const double c[3] = {p3[0] - p0[0], p3[1] - p0[1], p3[2] - p0[2]};
+  const double bxc[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
+  const double det = a[0] * bxc[0] + a[1] * bxc[1] + a[2] * bxc[2];
+  const double scale = std::abs(a[0]) + std::abs(a[1]) + std::abs(a[2]) + std::abs(b[0]) + std::abs(b[1]) +
+                       std::abs(b[2]) + std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]);
+  const double ratio = std::abs(det) / (scale * scale * scale);
+  return std::isfinite(ratio) ? ratio : 0.0;  // four equal points: 0 / 0
 }
 
 }  // namespace ugs

@@ -405,11 +405,13 @@ TEST(Quality, DihedralAngleBitForBitAsTheLoop) {
     if (what == 2) x[3][2] = x[0][2] + 1e-9 * s * unit(rng);                                                // sliver
     if (what == 3) x[3] = {x[0][0] + x[1][0] - x[2][0], x[0][1] + x[1][1] - x[2][1], x[0][2] + x[1][2] - x[2][2]};  // flat
     const double got = min_dihedral_angle_deg(x[0], x[1], x[2], x[3]);
-    const double want = loop_min_dihedral_deg(x[0], x[1], x[2], x[3]);
+    const double loop = loop_min_dihedral_deg(x[0], x[1], x[2], x[3]);
+    // Flat by ugs-solve's test: 0 whatever the faces' rounding says (issue 43: it said 180).
+    const double want = ugs::tet_is_degenerate(x[0], x[1], x[2], x[3]) ? 0.0 : loop;
     ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << "tetrahedron " << k << ": " << got << " vs " << want;
-    for (int lanes : {2, 4}) {  // both kernels, whichever the processor makes the default
+    for (int lanes : {2, 4}) {  // both kernels, whichever the processor makes the default: the loop's bits
       const double other = detail::min_dihedral_angle_deg_lanes(lanes, x[0], x[1], x[2], x[3]);
-      ASSERT_EQ(std::memcmp(&other, &want, sizeof other), 0) << lanes << " lanes, tetrahedron " << k;
+      ASSERT_EQ(std::memcmp(&other, &loop, sizeof other), 0) << lanes << " lanes, tetrahedron " << k;
     }
     ++checked;
     slivers += got > 0 && got < 1;

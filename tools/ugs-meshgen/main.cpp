@@ -163,6 +163,11 @@ int main(int argc, char** argv) {
     }
     if (q.inverted > 0)  // cannot happen with the split rule on a valid plan; never write such a mesh
       throw ugs::ComputeError(std::to_string(q.inverted) + " tetrahedra are inverted or flat; no mesh written");
+    if (q.degenerate > 0)  // the fault cut keeps clear of it (docs/dipping-faults.md, "Mesh quality"); ugs-solve would refuse it
+      throw ugs::ComputeError(fmt::format("tetrahedron {} (output index) is degenerate (|det| <= {:g} scale^3, ugs-solve's "
+                                          "test){}; no mesh written",
+                                          q.first_degenerate, ugs::kDegenerateTetRatio,
+                                          q.degenerate > 1 ? fmt::format(", and {} more", q.degenerate - 1) : std::string()));
     if (out.is_stdout()) ugs::write_msh(mesh, out, encoding);
     out.commit();
     t = clock.lap();

@@ -111,7 +111,9 @@ public:
 private:
   const Point3& X(std::uint32_t v) const { return s_.nodes[v]; }
   double quality(const Tet& t) const { return min_dihedral_angle_deg(X(t[0]), X(t[1]), X(t[2]), X(t[3])); }
-  bool positive(const Tet& t) const { return tet_signed_volume(X(t[0]), X(t[1]), X(t[2]), X(t[3])) > 0; }
+  // Positive, and clear of ugs-solve's flat test by a margin (kKeptRatio): a volume "> 0" alone let a
+  // collapse make four coplanar points whose rounding left a volume of 1e-10 m3 (issue 43).
+  bool positive(const Tet& t) const { return kept_volume(X(t[0]), X(t[1]), X(t[2]), X(t[3])); }
   // The measure every change must raise (its minimum over the tetrahedra it touches): the smallest
   // dihedral angle relative to min(bound, that of the input tetrahedron it comes from), so that a
   // sliver the input already had (a pinch-out, a thin sub-layer) does not stop the repair of its

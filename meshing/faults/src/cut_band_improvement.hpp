@@ -52,6 +52,15 @@ struct ElementSoup {
   std::function<void(std::uint32_t node, std::vector<std::uint32_t>& out)> tets_at;
 };
 
+// A tetrahedron a change of the cut may make or leave: positive volume and a volume ratio
+// (tet_volume_ratio, ugs-solve's test) above kKeptRatio, a hundred times the solver's limit, so
+// that no change of the cut leaves a tetrahedron ugs-solve refuses, or one near it. The input's
+// thinnest tetrahedra (a 0.5 m pinch-out layer under a 2 km plan triangle) have ratios of 1e-6 and more.
+inline constexpr double kKeptRatio = 100 * kDegenerateTetRatio;
+inline bool kept_volume(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return tet_signed_volume(a, b, c, d) > 0 && tet_volume_ratio(a, b, c, d) > kKeptRatio;
+}
+
 struct BandImprovement {
   std::size_t collapsed = 0;  // nodes merged into a neighbour across a short edge
   std::size_t moved = 0;      // node moves by smoothing

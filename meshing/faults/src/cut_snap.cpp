@@ -18,7 +18,7 @@ using namespace vec3;
 // Snaps nodes onto the plane N . x = C before cutting (docs/dipping-faults.md, "Snap"): where one
 // of `edges` crosses the plane within `ratio` of its length from a node, the node is moved onto
 // the plane, within the surfaces it lies on (`extra`: more planes it stays on if it lies on them), when its
-// tetrahedra stay positive and keep at least half their smallest dihedral angle.
+// tetrahedra stay positive (clear of ugs-solve's flat test: kept_volume) and keep at least half their smallest dihedral angle.
 void Cutter::snap_onto(const Point3& N, double C, double ratio, const std::vector<std::array<std::uint32_t, 2>>& edges,
                const std::vector<std::pair<Point3, double>>& extra) {
   if (ratio <= 0 || edges.empty()) return;
@@ -76,12 +76,13 @@ void Cutter::snap_onto(const Point3& N, double C, double ratio, const std::vecto
     for (const auto& [m, d] : extra)
       if (std::abs(dot(m, X_[v]) - d) <= tol_) normals[c].push_back(m);
   }
-  auto worst = [&](const std::vector<std::uint32_t>& tets, double& min_vol) {
+  // The worst angle of `tets`; kept: each is positive and clear of ugs-solve's flat test (kept_volume).
+  auto worst = [&](const std::vector<std::uint32_t>& tets, bool& kept) {
     double a = 180;
-    min_vol = std::numeric_limits<double>::infinity();
+    kept = true;
     for (auto t : tets) {
       const auto& e = T_[t];
-      min_vol = std::min(min_vol, tet_signed_volume(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
+      kept = kept && kept_volume(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]);
       a = std::min(a, min_dihedral_angle_deg(X_[e[0]], X_[e[1]], X_[e[2]], X_[e[3]]));
     }
     return a;
@@ -115,12 +116,12 @@ void Cutter::snap_onto(const Point3& N, double C, double ratio, const std::vecto
       bool keeps = true;
       for (const auto& m : normals[c]) keeps = keeps && std::abs(dot(m, delta)) <= tol_;
       if (!keeps) continue;
-      double vol0, vol1;
-      const double a0 = worst(tets_of[c], vol0);
+      bool kept0, kept1;
+      const double a0 = worst(tets_of[c], kept0);
       const Point3 old = X_[v];
       X_[v] = {old[0] + delta[0], old[1] + delta[1], old[2] + delta[2]};
-      const double a1 = worst(tets_of[c], vol1);
-      if (vol1 > 0 && a1 >= 0.5 * a0) {
+      const double a1 = worst(tets_of[c], kept1);
+      if (kept1 && a1 >= 0.5 * a0) {
         ++snapped_;
         snapped_nodes_.push_back(v);
         moved = true;

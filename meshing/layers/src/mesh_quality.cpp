@@ -23,7 +23,8 @@ namespace {
 struct Partial {
   double vmin = std::numeric_limits<double>::infinity(), vmax = -std::numeric_limits<double>::infinity();
   double volume = 0, min_angle = 180;
-  std::size_t inverted = 0, small = 0;
+  std::size_t inverted = 0, small = 0, degenerate = 0;
+  std::size_t first_degenerate = std::numeric_limits<std::size_t>::max();  // its index in the block
   double max_cos = -1;  // the smallest angle's cosine; acos once per chunk, not per tetrahedron
 };
 
@@ -174,7 +175,10 @@ double cos_to_deg(double c) { return std::acos(c) * 180.0 / M_PI; }
 
 }  // namespace
 
+// A flat tetrahedron's faces turn "away from" the opposite vertex by rounding only: their normals
+// may all agree and give 180 deg. ugs-solve's test (tet_is_degenerate) tells it, and it is 0.
 double min_dihedral_angle_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  if (tet_is_degenerate(a, b, c, d)) return 0.0;
   return cos_to_deg(worst_dihedral_cos(a, b, c, d));
 }
 
@@ -206,6 +210,7 @@ QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
       continue;
     }
     if (b.type != ElementType::Tetrahedron) continue;
+    const std::size_t first_tet = q.tetrahedra;  // the block's first tetrahedron's index among all
     q.tetrahedra += b.size();
     const std::size_t nchunks = (b.size() + chunk - 1) / chunk;
     std::vector<Partial> parts(nchunks);
@@ -223,9 +228,15 @@ QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
           p.vmax = std::max(p.vmax, v);
           p.volume += v;
           p.inverted += v <= 0;
+          const bool flat = tet_is_degenerate(A, B, C, D);
+          if (flat) {
+            p.first_degenerate = std::min(p.first_degenerate, e);
+            ++p.degenerate;
+          }
           // acos is decreasing: the smallest angle is acos of the largest cosine, and an angle is
           // below the bound when its cosine is above the bound's; acos only within rounding of it.
-          const double w = worst_dihedral_cos(A, B, C, D);
+          // A flat one's is 1 (0 deg; min_dihedral_angle_deg).
+          const double w = flat ? 1.0 : worst_dihedral_cos(A, B, C, D);
           p.max_cos = std::max(p.max_cos, w);
           if (w > cos_hi) ++p.small;
           else if (w >= cos_lo) p.small += cos_to_deg(w) < small_angle_deg;
@@ -248,6 +259,8 @@ QualityReport mesh_quality(const Mesh& mesh, double small_angle_deg) {
       mv->volume += p.volume;
       q.total_volume += p.volume;
       q.inverted += p.inverted;
+      if (p.degenerate > 0 && q.degenerate == 0) q.first_degenerate = first_tet + p.first_degenerate;
+      q.degenerate += p.degenerate;
       q.small_angle += p.small;
       q.min_dihedral_deg = std::min(q.min_dihedral_deg, p.min_angle);
     }

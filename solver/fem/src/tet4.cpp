@@ -17,7 +17,8 @@ Tet4 tet4(const std::array<Point3, 4>& x) {
   const double det = a[0] * bxc[0] + a[1] * bxc[1] + a[2] * bxc[2];
   const double scale = std::abs(a[0]) + std::abs(a[1]) + std::abs(a[2]) + std::abs(b[0]) + std::abs(b[1]) +
                        std::abs(b[2]) + std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]);
-  if (!(std::abs(det) > 1e-14 * scale * scale * scale)) throw std::domain_error("degenerate tetrahedron");
+  // The limit ugs-meshgen checks every tetrahedron against (tet_is_degenerate, formats/mesh.hpp).
+  if (!(std::abs(det) > kDegenerateTetRatio * scale * scale * scale)) throw std::domain_error("degenerate tetrahedron");
   Tet4 t;
   t.volume = det / 6.0;
   for (int k = 0; k < 3; ++k) {

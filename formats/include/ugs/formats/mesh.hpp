@@ -108,4 +108,15 @@ private:
 // Signed volume of a tetrahedron (positive when nodes 1-2-3 turn counter-clockwise seen from node 4... i.e. Gmsh's orientation).
 double tet_signed_volume(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 
+// ugs-solve's test of a flat tetrahedron (solver/fem/src/tet4.cpp): the Jacobian's determinant
+// |det| = 6 |V| against scale^3, scale the sum of the |components| of the three edges from node a.
+// A tetrahedron whose ratio |det| / scale^3 is at most kDegenerateTetRatio is refused by the solver.
+// Rounding alone gives a ratio of about 1e-16 to four coplanar points, with either sign: a volume
+// "> 0" does not tell a tetrahedron from a flat one, this ratio does.
+inline constexpr double kDegenerateTetRatio = 1e-14;
+double tet_volume_ratio(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+inline bool tet_is_degenerate(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return !(tet_volume_ratio(a, b, c, d) > kDegenerateTetRatio);
+}
+
 }  // namespace ugs

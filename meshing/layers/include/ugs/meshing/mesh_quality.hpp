@@ -24,6 +24,8 @@ struct QualityReport {
   std::size_t nodes = 0, tetrahedra = 0, triangles = 0;
   double min_volume = 0, max_volume = 0, total_volume = 0;
   std::size_t inverted = 0;                     // signed volume <= 0
+  std::size_t degenerate = 0;                   // flat by ugs-solve's test (tet_is_degenerate), inverted or not
+  std::size_t first_degenerate = 0;             // the first of them: its index among the tetrahedra (output order)
   double min_dihedral_deg = 0;
   double small_angle_deg = 5.0;
   std::size_t small_angle = 0;                  // tetrahedra with a dihedral angle below small_angle_deg
@@ -31,7 +33,7 @@ struct QualityReport {
   std::vector<GroupSize> surfaces;              // triangle groups (bnd:*, fault:*)
 };
 
-// Smallest dihedral angle of a tetrahedron, in degrees (0 for a flat one).
+// Smallest dihedral angle of a tetrahedron, in degrees (0 for a flat one: tet_is_degenerate).
 double min_dihedral_angle_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 namespace detail {
 // The same computed four faces at a time (lanes 4: AVX, where the processor has it) or two at a
