@@ -182,14 +182,18 @@ OptimizerResult optimize(Evaluator& ev, const std::vector<ParameterSpec>& params
     res.stop_reason = "evaluation budget used by the scan";
   }
   // The answer is the best point evaluated.
-  const auto& h = ev.history();
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < h.size(); ++i)
+  take_best_evaluated(ev, 0, res);
+  return res;
+}
+
+void take_best_evaluated(const Evaluator& evaluator, std::size_t first, OptimizerResult& res) {
+  const auto& h = evaluator.history();
+  std::size_t best = first;
+  for (std::size_t i = first + 1; i < h.size(); ++i)
     if (h[i].misfit.rms_mm < h[best].misfit.rms_mm) best = i;
   res.best_index = best;
   res.best_x = h[best].x;
   res.best_rms_mm = h[best].misfit.rms_mm;
-  return res;
 }
 
 }  // namespace ugs::calibration

@@ -222,13 +222,7 @@ ReciprocalResult calibrate_reciprocal(Evaluator& ev, const std::vector<Parameter
     }
   }
   // The answer is the best point evaluated.
-  const auto& h = ev.history();
-  std::size_t best = first;
-  for (std::size_t i = first + 1; i < h.size(); ++i)
-    if (h[i].misfit.rms_mm < h[best].misfit.rms_mm) best = i;
-  res.best_index = best;
-  res.best_x = h[best].x;
-  res.best_rms_mm = h[best].misfit.rms_mm;
+  take_best_evaluated(ev, first, res);
   return out;
 }
 

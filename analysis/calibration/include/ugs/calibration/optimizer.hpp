@@ -37,6 +37,10 @@ double to_unit(const runner::ParameterSpec& p, double x);
 
 OptimizerResult optimize(Evaluator& evaluator, const std::vector<runner::ParameterSpec>& params, const OptimizerOptions& options);
 
+// The answer of a search: the evaluation of lowest RMS among the evaluator's history from `first`
+// on (best_index, best_x, best_rms_mm of `res`).
+void take_best_evaluated(const Evaluator& evaluator, std::size_t first, OptimizerResult& res);
+
 // Brent's localmin on [a, b] starting from x0 (f(x0) = f0 known), to tolerance tol; stops after
 // max_evals calls of f. Returns the best x seen. Exposed for tests.
 struct BrentResult {
