@@ -37,7 +37,8 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
       continue;
     }
     try {
-      series[k] = member_outputs(members.folder(k), options);
+      const std::optional<CaseFile> own = options.seismic_windows.empty() ? std::nullopt : members.forecast_case(k);
+      series[k] = member_outputs(members.folder(k), options, own ? &*own : nullptr);
       metrics[k] = series[k].metrics;
     } catch (const InputError& e) {
       errors[k] = fmt::format("member {}: {}", k + 1, e.what());

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -13,9 +14,13 @@ namespace ugs::ensemble {
 
 namespace fs = std::filesystem;
 
+bool forecast_only(const std::string& path) { return path.rfind("seismicity.", 0) == 0; }
+
 EnsembleMembers::EnsembleMembers(const EnsembleSpec& spec, Design design, const runner::CaseTemplate& tmpl,
                                  const std::string& command, const std::string& mesh, const std::string& cache_dir)
-    : spec_(spec), design_(std::move(design)) {
+    : spec_(spec), design_(std::move(design)), tmpl_(tmpl) {
+  for (const auto& p : spec_.parameters)
+    for (const auto& path : p.paths) any_forecast_only_ = any_forecast_only_ || forecast_only(path);
   runner::SolverRunSetup s;
   s.case_template = &tmpl;
   s.command = command;
@@ -34,12 +39,23 @@ runner::ParameterValues EnsembleMembers::values(std::size_t k) const {
   return v;
 }
 
-std::string EnsembleMembers::entry(std::size_t k) const { return runs_->entry_name(values(k)); }
+runner::ParameterValues EnsembleMembers::solver_values(std::size_t k) const {
+  runner::ParameterValues v = values(k);
+  std::erase_if(v, [](const auto& pv) { return forecast_only(pv.first); });
+  return v;
+}
+
+std::optional<CaseFile> EnsembleMembers::forecast_case(std::size_t k) const {
+  if (!any_forecast_only_) return std::nullopt;
+  return runner::read_rendered_case(tmpl_, values(k));
+}
+
+std::string EnsembleMembers::entry(std::size_t k) const { return runs_->entry_name(solver_values(k)); }
 std::string EnsembleMembers::folder(std::size_t k) const { return runs_->entry_path(entry(k)); }
 
 MemberStatus EnsembleMembers::status(std::size_t k) const {
   MemberStatus s;
-  const auto v = values(k);
+  const auto v = solver_values(k);
   s.entry = runs_->entry_name(v);
   if (runs_->complete(v)) {
     s.state = MemberState::done;
@@ -60,18 +76,23 @@ MemberStatus EnsembleMembers::status(std::size_t k) const {
 std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& which, int jobs,
                                                const std::function<void(std::size_t, const MemberStatus&)>& on_done) {
   std::vector<MemberStatus> out(which.size());
+  // One run per entry: members with the same solver values (forecast-only parameters aside) share
+  // it, the first of them runs it and the others take its outcome afterwards.
+  std::vector<std::size_t> runs, later;  // positions in `which`
+  std::map<std::string, std::size_t> first;
+  for (std::size_t j = 0; j < which.size(); ++j) (first.emplace(entry(which[j]), j).second ? runs : later).push_back(j);
   std::atomic<std::size_t> next{0};
   std::mutex lock;
   auto worker = [&] {
     for (;;) {
-      const std::size_t j = next++;
-      if (j >= which.size()) return;
-      const std::size_t k = which[j];
+      const std::size_t i = next++;
+      if (i >= runs.size()) return;
+      const std::size_t j = runs[i], k = which[j];
       MemberStatus s = status(k);
       if (s.state != MemberState::done) {
-        // Two members with the same values share an entry: the runner's atomic rename settles it.
+        // Another process sharing the cache may run the same entry: the runner's atomic rename settles it.
         try {
-          s.seconds = runs_->run(values(k), fmt::format("member {}", k + 1), [](const std::string&, const std::string&) {});
+          s.seconds = runs_->run(solver_values(k), fmt::format("member {}", k + 1), [](const std::string&, const std::string&) {});
           s.state = MemberState::done;
           s.error.clear();
         } catch (const ComputeError& e) {
@@ -85,11 +106,19 @@ std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& w
       if (on_done) on_done(k, s);
     }
   };
-  const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(std::max(jobs, 1)), which.size());
+  const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(std::max(jobs, 1)), runs.size());
   std::vector<std::thread> threads;
   for (std::size_t t = 1; t < n; ++t) threads.emplace_back(worker);
   if (n > 0) worker();
   for (auto& t : threads) t.join();
+  for (std::size_t j : later) {
+    const std::size_t k = which[j];
+    MemberStatus s = out[first.at(entry(k))];
+    s.ran_now = false;
+    s.seconds = 0;
+    out[j] = s;
+    if (on_done) on_done(k, s);
+  }
   return out;
 }
 

@@ -160,8 +160,9 @@ void scenario_metrics(const std::string& folder, Metrics& out) {
 }
 
 // The seismicity forecast of the member (docs/seismicity.md) over each window: its per-pair fault CSVs
-// (<stem>_fault_<F>.csv, in name order) with the [seismicity] parameters of its own case copy.
-void seismicity_metrics(const std::string& folder, const std::vector<Phase>& windows, Metrics& out) {
+// (<stem>_fault_<F>.csv, in name order) with the [seismicity] parameters of the member's case: its
+// own case copy, or `forecast_case` when given.
+void seismicity_metrics(const std::string& folder, const std::vector<Phase>& windows, const CaseFile* forecast_case, Metrics& out) {
   if (windows.empty()) return;
   std::vector<std::string> pairs;
   for (const auto& e : fs::directory_iterator(folder)) {
@@ -175,7 +176,7 @@ void seismicity_metrics(const std::string& folder, const std::vector<Phase>& win
   s.inputs = pairs;
   s.case_file = (fs::path(folder) / "case.toml").string();
   for (const auto& w : windows) s.windows.push_back(format_iso_date(w.start) + "/" + format_iso_date(w.end));
-  const CaseFile c = read_case_file(s.case_file);
+  const CaseFile c = forecast_case ? *forecast_case : read_case_file(s.case_file);
   const seismicity::StressHistory h = seismicity::read_pair_csvs(pairs);
   const seismicity::Forecast fc = seismicity::compute(s, c, h);
   const std::vector<double>& magnitudes = c.seismicity->magnitudes;
@@ -202,7 +203,7 @@ void seismicity_metrics(const std::string& folder, const std::vector<Phase>& win
 
 Metrics member_metrics(const std::string& folder, const MetricOptions& options) { return member_outputs(folder, options).metrics; }
 
-MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options) {
+MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options, const CaseFile* forecast_case) {
   MemberOutputs mo;
   Metrics& out = mo.metrics;
   const std::string h5 = (fs::path(folder) / "result.h5").string();
@@ -214,7 +215,7 @@ MemberOutputs member_outputs(const std::string& folder, const MetricOptions& opt
   }
   fault_metrics(folder, out);
   scenario_metrics(folder, out);
-  seismicity_metrics(folder, options.seismic_windows, out);
+  seismicity_metrics(folder, options.seismic_windows, forecast_case, out);
   for (const auto& [name, v] : out)
     if (!std::isfinite(v)) throw InputError(folder, fmt::format("metric {} is not finite", name));
   return mo;

@@ -187,7 +187,7 @@ std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::v
                                                it->second, path, tmpl.path(), loc.line()));
     }
   std::vector<std::string> warnings;
-  // Each copy is checked in the system's temporary folder (no output or cache folder exists yet).
+  // Each copy is checked at both ends of each parameter (read_rendered_case).
   for (const auto& p : params) {
     const double now = tmpl.value(p.paths.front());
     if (now < p.lower || now > p.upper)
@@ -195,33 +195,43 @@ std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::v
     for (double bound : {p.lower, p.upper}) {
       std::vector<std::pair<std::string, double>> v;
       for (const auto& path : p.paths) v.emplace_back(path, bound);
-      std::string check = (fs::temp_directory_path() / fmt::format("ugs-case-check-{}-XXXXXX", ::getpid())).string();
-      const int fd = ::mkstemp(check.data());
-      if (fd < 0) throw ComputeError(fmt::format("cannot create a temporary file in {}", fs::temp_directory_path().string()));
-      ::close(fd);
-      struct Remove {
-        std::string path;
-        ~Remove() {
-          std::error_code ec;
-          fs::remove(path, ec);
-        }
-      } remove_check{check};
-      {
-        std::ofstream f(check);
-        f << tmpl.render(v);
-      }
       try {
-        (void)read_case_file(check);
+        (void)read_rendered_case(tmpl, v);
       } catch (const InputError& e) {
-        // Every problem names the copy (one per line of an ErrorList): name the case instead.
-        std::string msg = e.what();
-        for (auto at = msg.find(check); at != std::string::npos; at = msg.find(check, at + tmpl.path().size()))
-          msg.replace(at, check.size(), tmpl.path());
-        throw InputError(where(p), fmt::format("the case is not valid at {} = {}: {}", p.name, bound, msg));
+        throw InputError(where(p), fmt::format("the case is not valid at {} = {}: {}", p.name, bound, e.what()));
       }
     }
   }
   return warnings;
+}
+
+CaseFile read_rendered_case(const CaseTemplate& tmpl, const std::vector<std::pair<std::string, double>>& values) {
+  // The case reader takes a file: the copy goes to the system's temporary folder and is always
+  // removed (no output or cache folder may exist yet).
+  std::string copy = (fs::temp_directory_path() / fmt::format("ugs-case-copy-{}-XXXXXX", ::getpid())).string();
+  const int fd = ::mkstemp(copy.data());
+  if (fd < 0) throw ComputeError(fmt::format("cannot create a temporary file in {}", fs::temp_directory_path().string()));
+  ::close(fd);
+  struct Remove {
+    std::string path;
+    ~Remove() {
+      std::error_code ec;
+      fs::remove(path, ec);
+    }
+  } remove_copy{copy};
+  {
+    std::ofstream f(copy);
+    f << tmpl.render(values);
+  }
+  try {
+    return read_case_file(copy);
+  } catch (const InputError& e) {
+    // Every problem names the copy (one per line of an ErrorList): name the case instead.
+    std::string msg = e.what();
+    for (auto at = msg.find(copy); at != std::string::npos; at = msg.find(copy, at + tmpl.path().size()))
+      msg.replace(at, copy.size(), tmpl.path());
+    throw InputError("", msg);
+  }
 }
 
 std::string toml_float(double v) {

@@ -3,9 +3,13 @@
 // ugs-calibrate's evaluations) into CACHE/member-<hash>/, content-addressed, so a rerun (or a
 // Makefile / Slurm job running one member) skips the members already done. The entry keeps the
 // solver's outputs (result.h5, *_faults.csv, *_scenario.csv): metrics are computed when collecting.
+// Parameters the solver never reads (the seismicity forecast's, `seismicity.*`) do not enter the
+// run: members that differ only in them share one entry, and collect applies each member's own
+// values to its forecast (forecast_case).
 #pragma once
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +17,10 @@
 #include "ugs/runner/solver_runs.hpp"
 
 namespace ugs::ensemble {
+
+// A case path read only by the metrics (the rate-and-state forecast, [seismicity] and its per-fault
+// overrides), never by the solver.
+bool forecast_only(const std::string& path);
 
 enum class MemberState { done, failed, missing };
 
@@ -31,7 +39,11 @@ public:
 
   std::size_t size() const { return design_.x.size(); }
   const Design& design() const { return design_; }
-  runner::ParameterValues values(std::size_t k) const;   // k 0-based
+  runner::ParameterValues values(std::size_t k) const;          // k 0-based; every parameter
+  runner::ParameterValues solver_values(std::size_t k) const;   // those the solver reads: the run's key
+  // The member's whole case (every parameter set) when some parameter is forecast-only, for its
+  // forecast metrics; nullopt otherwise (the entry's own case copy is the member's).
+  std::optional<CaseFile> forecast_case(std::size_t k) const;
   std::string entry(std::size_t k) const;
   std::string folder(std::size_t k) const;                // CACHE/entry
   MemberStatus status(std::size_t k) const;              // from the cache, runs nothing
@@ -46,6 +58,8 @@ public:
 private:
   const EnsembleSpec& spec_;
   Design design_;
+  const runner::CaseTemplate& tmpl_;
+  bool any_forecast_only_ = false;
   std::unique_ptr<runner::SolverRuns> runs_;
 };
 

@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "ugs/formats/case_file.hpp"
 #include "ugs/insar/misfit.hpp"
 #include "ugs/insar/ps_data.hpp"
 #include "ugs/meshing/geodata.hpp"
@@ -62,6 +63,8 @@ struct MemberOutputs {
   std::vector<std::int64_t> ps_dates;
   std::vector<double> ps_up_mm;
 };
-MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options);
+// `forecast_case`: the member's own case for the seismicity metrics when it is not the folder's
+// case copy (forecast-only parameters, EnsembleMembers::forecast_case); nullptr = the copy.
+MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options, const CaseFile* forecast_case = nullptr);
 
 }  // namespace ugs::ensemble

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "ugs/formats/case_file.hpp"
+
 namespace ugs::runner {
 
 struct ParameterSpec {
@@ -55,6 +57,11 @@ private:
 // case's own message quoted. Returns warnings for the caller to print: a case value outside
 // [lower, upper].
 std::vector<std::string> check_parameters(const CaseTemplate& tmpl, const std::vector<ParameterSpec>& params, const std::string& source = "");
+
+// The case with each path set to its value, read as ugs::read_case_file reads a case (through a
+// copy in the system's temporary folder, always removed). InputError naming the case, not the
+// copy, when the values make it invalid.
+CaseFile read_rendered_case(const CaseTemplate& tmpl, const std::vector<std::pair<std::string, double>>& values);
 
 // Shortest decimal that reads back to `v`, always a TOML float ("3.0", "2.5e-07").
 std::string toml_float(double v);
