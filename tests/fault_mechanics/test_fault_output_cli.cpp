@@ -9,7 +9,8 @@
 //    max opening, max CFS change, the slip and open areas (sums of the rows' area_m2) and the counts
 //    of pairs, slipping and open pairs; the rows' areas split each triangle over its paired corners
 //    (tip nodes' thirds counted);
-//  - --fault-pairs-csv PREFIX and 'none'; a prefix in a missing folder: exit 2, one line, no results.
+//  - --fault-pairs-csv PREFIX and 'none'; --fault-pairs-every-step with one output date; a prefix in a
+//    missing folder: exit 2, one line, no results.
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -172,6 +173,24 @@ TEST(FaultOutputCli, PairCsvMatchesTheHdf5AndTheGeometry) {
   ASSERT_EQ(test::run(solve(d, "-o " + d / "n.h5 --fault-pairs-csv none")).exit_code, 0);
   EXPECT_FALSE(fs::exists(d / "n_fault_F.csv"));
   EXPECT_TRUE(fs::exists(d / "n_faults.csv"));
+  // --fault-pairs-every-step: [output] dates naming the last date only; the per-pair rows of every
+  // step all the same (the bytes of the run that output every step), the volume and fault fields
+  // at the last date only; without the flag the rows of the last date only.
+  const std::string last = h5.steps().back().date;
+  ASSERT_EQ(test::slurp(d / "case.toml").find("[output]"), std::string::npos);
+  test::spit(d / "case_last.toml", test::slurp(d / "case.toml") + "\n[output]\ndates = [\"" + last + "\"]\n");
+  const std::string last_case = test::tool("ugs-solve") + " " + d / "faulted.msh" + " --case " + d / "case_last.toml" + " --pressure " +
+                                d / "flow.h5";
+  ASSERT_EQ(test::run(last_case + " -o " + d / "e.h5 --fault-pairs-every-step").exit_code, 0);
+  auto rows_of = [](const std::string& text) { return text.substr(text.find("\ndate,")); };
+  EXPECT_EQ(rows_of(test::slurp(d / "e_fault_F.csv")), rows_of(test::slurp(d / "out_fault_F.csv")));
+  EXPECT_EQ(FieldSeriesReader(d / "e.h5").steps().size(), 1u);
+  EXPECT_EQ(FieldSeriesReader(d / "e_faults.h5").steps().size(), 1u);
+  ASSERT_EQ(test::run(last_case + " -o " + d / "l.h5").exit_code, 0);
+  const CsvTable only_last = CsvTable::read(d / "l_fault_F.csv");
+  EXPECT_EQ(only_last.rows(), pairs);
+  EXPECT_EQ(only_last.text(0, only_last.column("date")), last);
+
   // A prefix in a folder that does not exist: exit 2, one line naming it, no results.
   const auto bad = test::run(solve(d, "-o " + d / "bad.h5 --fault-pairs-csv " + d / "missing/p_"));
   EXPECT_EQ(bad.exit_code, 2) << bad.err;

@@ -242,7 +242,7 @@ FaultOutput::FaultOutput(const std::string& h5_path, const std::string& csv_path
 
 FaultOutput::~FaultOutput() = default;
 
-void FaultOutput::add(const std::string& date, double time, const FaultFields& f, bool write_fields) {
+void FaultOutput::add(const std::string& date, double time, const FaultFields& f, bool write_fields, bool write_pairs) {
   Impl& s = *impl_;
   if (s.csv) {
     const auto stats = fault_date_stats(*s.fm, f);
@@ -256,7 +256,8 @@ void FaultOutput::add(const std::string& date, double time, const FaultFields& f
       s.csv->integer(static_cast<std::int64_t>(d.open)).end_row();
     }
   }
-  if (!write_fields || (!s.h5 && s.pair_csv.empty())) return;
+  const bool h5 = write_fields && s.h5, pairs = write_pairs && !s.pair_csv.empty();
+  if (!h5 && !pairs) return;
   // Node values: the pairs' own, and the means of their neighbours at tips and prescribed pairs.
   std::vector<Field> nf, cf;
   auto add = [&](const char* name, const std::vector<double>& v, int k, bool largest = false) {
@@ -283,7 +284,7 @@ void FaultOutput::add(const std::string& date, double time, const FaultFields& f
   nf.push_back({"interpolated", 1, std::move(interp)});
   nf.push_back({"along_strike", 1, s.plane.along_strike});
   nf.push_back({"down_dip", 1, s.plane.down_dip});
-  if (!s.pair_csv.empty()) {
+  if (pairs) {
     auto field = [&](const char* name) -> const std::vector<double>& {
       for (const auto& x : nf)
         if (x.name == name) return x.values;
@@ -307,7 +308,7 @@ void FaultOutput::add(const std::string& date, double time, const FaultFields& f
       }
     }
   }
-  if (s.h5) s.h5->add_step(date, time, nf, cf);
+  if (h5) s.h5->add_step(date, time, nf, cf);
 }
 
 void FaultOutput::commit() {

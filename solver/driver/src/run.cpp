@@ -400,7 +400,7 @@ private:
             critical_before_ = critical_before_ || w.critical;
           }
           note = "; " + fault_step_note(R.fm, ff);
-          R.out->faults()->add(date, time, ff, steps_.output[i]);
+          R.out->faults()->add(date, time, ff, steps_.output[i], steps_.output[i] || o_.faults.pairs_every_step);
         }
         R.out->write_step(date, time, u, steps_.output[i], *R.history);
       });

@@ -81,11 +81,11 @@ class FaultOutput {
 public:
   // Empty paths disable that output. The files appear on commit() only. `pairs_prefix`: the
   // per-pair CSVs <pairs_prefix><fault_file_name(fault)>.csv, rows at the dates add() is given
-  // write_fields = true.
+  // write_pairs = true (the fields HDF5 at those with write_fields = true).
   FaultOutput(const std::string& h5_path, const std::string& csv_path, const FaultModel& fm,
               const std::vector<std::string>& csv_comments, const std::string& pairs_prefix = "");
   ~FaultOutput();
-  void add(const std::string& date, double time, const FaultFields& f, bool write_fields);
+  void add(const std::string& date, double time, const FaultFields& f, bool write_fields, bool write_pairs);
   void commit();
 
 private:

@@ -18,6 +18,7 @@ struct FaultSettings {
   std::optional<std::string> fields;      // fault fields at the output dates (HDF5 + XDMF)
   std::optional<std::string> table;       // per fault and date: max chi, slip, areas (CSV)
   std::optional<std::string> pairs_prefix;  // per fault, every node pair at the output dates: PREFIX<fault>.csv
+  bool pairs_every_step = false;          // the per-pair CSVs at every step instead (a stress history)
   std::string scenario_table;             // the scales tried by the safe-scale search (CSV)
   std::optional<contact::SaddleSolver> solver;  // overrides [solver] fault_solver
   std::optional<double> scale;            // overrides [scenario] pressure_scale (>= 0)
