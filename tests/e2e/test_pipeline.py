@@ -20,6 +20,11 @@ run:
     the case has a finite, positive expected count, the background rate r x area at the geostatic start
     (R/r = 1 exactly where the Coulomb stress change is 0), P = 1 - exp(-N), Gutenberg-Richter between
     the magnitudes, the sum over the faults, and the report's headline rows holding those counts;
+  * the small ensemble (ensemble.toml: friction, A sigma, s_r; Morris on 2 levels): 8 members on two
+    solver runs (the seismicity values are forecast-only), the friction at its two levels 27.5 and 32.5
+    deg, members of one run with the same chi, mu* of the seismicity values exactly 0 on chi, a member's
+    expected events equal to ugs-seismicity on its own per-pair CSVs with its own values, and the
+    report's tornado chart and P(chi >= 0.8) / P(event) rows;
   * Make reruns only what an edit affects (a raster -> the mesh and what follows, not the plan).
 """
 
@@ -27,7 +32,9 @@ import csv
 import datetime as dt
 import math
 import os
+import shutil
 import subprocess
+import tempfile
 import sys
 import time
 import tomllib
@@ -181,6 +188,55 @@ def check_forecast(out, case, rows, summary):
     check(len(got) == 1 and abs(got[0] - n2) <= 5e-3 * n2 and q in summary, f"headline and summary '{q}' = {n2:.3g}")
 
 
+def check_ensemble(build, out, summary, rows):
+    """The small ensemble of the demo (ensemble.toml) and its rows in the report."""
+    ens = os.path.join(out, "ensemble")
+    members = data_rows(os.path.join(ens, "members.csv"))
+    fric, a_sigma, s_r = "friction_deg (all faults)", "seismicity.A_sigma_MPa", "seismicity.stressing_rate_MPa_per_yr"
+    check(len(members) == 8 and all(m["status"] == "ok" for m in members), f"ensemble: {len(members)} members, all ok")
+    levels = sorted({float(m[fric]) for m in members})
+    check(len(levels) == 2 and all(abs(x - y) <= 1e-9 for x, y in zip(levels, (27.5, 32.5))),
+          f"ensemble: the friction at its two Morris levels {levels} (27.5, 32.5 deg)")
+    entries = {m["entry"] for m in members}
+    runs = [d for d in os.listdir(os.path.join(out, "ensemble.cache")) if d.startswith("member-")]
+    check(len(entries) == 2 and len(runs) == 2, f"ensemble: {len(entries)} entries, {len(runs)} solver runs for 8 members")
+    chi = [k for k in members[0] if k.startswith("chi_max.")]
+    same = all(m[k] == n[k] for m in members for n in members if m["entry"] == n["entry"] for k in chi)
+    check(chi and same, f"ensemble: members sharing a run have the same {len(chi)} chi metrics")
+    morris = data_rows(os.path.join(ens, "morris.csv"))
+    zero = [r for r in morris if r["parameter"] in (a_sigma, s_r) and r["metric"].startswith("chi_max.")]
+    check(zero and all(float(r["mu_star"]) == 0 for r in zero), f"morris: mu* of A sigma and s_r exactly 0 on chi ({len(zero)} rows)")
+    # Member 1's forecast again by ugs-seismicity on its per-pair CSVs, with its values in a case copy.
+    m = members[0]
+    folder = os.path.join(out, "ensemble.cache", m["entry"])
+    with open(os.path.join(folder, "case.toml")) as fh:
+        text = fh.read()
+    text = text.replace("A_sigma_MPa = 0.05", f"A_sigma_MPa = {float(m[a_sigma])!r}")
+    text = text.replace("stressing_rate_MPa_per_yr = 1e-3", f"stressing_rate_MPa_per_yr = {float(m[s_r])!r}")
+    work = tempfile.mkdtemp(prefix="ugs-e2e-ensemble-")  # not in OUT: the determinism test compares OUT's files
+    copy = os.path.join(work, "case.toml")
+    with open(copy, "w") as fh:
+        fh.write(text)
+    pairs = sorted(os.path.join(folder, f) for f in os.listdir(folder) if "_fault_" in f and f.endswith(".csv"))
+    table = os.path.join(work, "forecast.csv")
+    r = subprocess.run([f"{build}/tools/ugs-seismicity/ugs-seismicity", *pairs, "--case", copy, "--start", "2025-01-01",
+                        "--window", "2025-01-01/2033-01-01", "-q", "-o", table], capture_output=True, text=True)
+    win = data_rows(table[:-4] + "_windows.csv") if r.returncode == 0 else []
+    shutil.rmtree(work)
+    mc = tomllib.loads(text)["seismicity"]["M_c"]
+    n = [float(w["expected_events"]) for w in win if w["fault"] == "all" and float(w["magnitude"]) == mc]
+    got = float(m["seismic_events.all.forecast"])
+    check(len(n) == 1 and abs(got - n[0]) <= 1e-9 * n[0],
+          f"member 1 (A sigma {float(m[a_sigma]):.4g} MPa, s_r {float(m[s_r]):.3g} MPa/yr): {got:.6g} expected events = "
+          f"ugs-seismicity on its own CSVs {n}" + (f" ({r.stderr.strip()})" if r.returncode else ""))
+    for f in ("report/ensemble_tornado_morris.png",):
+        check(os.path.isfile(os.path.join(out, f)), f"{f} written")
+    chi_rows = [x for x in rows if x["group"] == "ensemble" and x["quantity"].startswith("P(chi >= 0.8)")]
+    event_rows = [x for x in rows if x["group"].startswith("ensemble, seismicity window") and x["quantity"].startswith("P(event")]
+    check(len(chi_rows) >= 2 and event_rows and "8 of 8" in summary,
+          f"report: {len(chi_rows)} P(chi >= 0.8) rows, {len(event_rows)} P(event) rows, '8 of 8' members")
+
+
 def main():
     build = os.path.abspath(sys.argv[1])
     out = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else os.path.join(build, "e2e-tiny")
@@ -249,6 +305,7 @@ def main():
               f"{name} slips only at the pools' depth ({len(slip_z)} dates with slip, z in [{lo:.0f}, {hi:.0f}] m)")
 
     check_forecast(out, case, rows, summary)
+    check_ensemble(build, out, summary, rows)
 
     with open(os.path.join(out, "calibration", "best.toml"), "rb") as fh:
         best = tomllib.load(fh)

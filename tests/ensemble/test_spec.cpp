@@ -59,6 +59,20 @@ TEST(EnsembleSpec, ReadsParametersAndDistributions) {
   EXPECT_EQ(*s.parameters[1].distribution.lower, 0.8);
   EXPECT_FALSE(s.parameters[1].distribution.upper);
   EXPECT_EQ(s.seed, 3u);
+  EXPECT_EQ(s.parameters[0].name, "material.pool_c.c_R");  // no name: the first path
+  EXPECT_EQ(s.parameters[1].name, "initial_stress.k0");
+}
+
+TEST(EnsembleSpec, AParameterNameHeadsItsColumnsAndIsChecked) {
+  const std::string head = "[design]\nmethod = \"lhs\"\nmembers = 10\n";
+  const std::string uni = "distribution = \"uniform\"\nlower = 1.0\nupper = 2.0\n";
+  const EnsembleSpec s = spec_of(head + "[[parameter]]\nname = \"k (both)\"\npaths = [\"a\", \"b\"]\n" + uni);
+  EXPECT_EQ(s.parameters[0].name, "k (both)");
+  EXPECT_EQ(s.parameters[0].paths, (std::vector<std::string>{"a", "b"}));
+  const std::string comma = error_of(head + "[[parameter]]\nname = \"a,b\"\npath = \"a\"\n" + uni);
+  EXPECT_NE(comma.find("'parameter[0].name': must be non-empty text without commas"), std::string::npos) << comma;
+  const std::string same = error_of(head + "[[parameter]]\nname = \"c\"\npath = \"a\"\n" + uni + "[[parameter]]\npath = \"c\"\n" + uni);
+  EXPECT_NE(same.find("'c' names two parameters"), std::string::npos) << same;
 }
 
 TEST(EnsembleSpec, BadInputIsOneLineNamingTheKey) {

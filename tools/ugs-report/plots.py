@@ -395,14 +395,27 @@ def plot_tornado(m, fig):
         per_metric.setdefault(r[col["metric"]], []).append(r)
     # Metrics on which no parameter acts (every index 0, e.g. no settlement in a storage phase) stay in the CSV.
     key = "st" if fig["method"] == "sobol" else "mu_star"
-    metrics = [k for k, rs in per_metric.items() if any(float(r[col[key]]) != 0 for r in rs)][:6] or list(per_metric)[:1]
+    acted = [k for k, rs in per_metric.items() if any(float(r[col[key]]) != 0 for r in rs)]
+    # The answers first: the event count and P(M >= m) over all faults, the safe scale, chi per fault,
+    # then the surface and misfit metrics, in the CSV's order within each kind; six panels.
+    kinds = (r"^seismic_events\.all\.", r"^p_event_M[0-9.]+\.all\.", r"^safe_scale$", r"^chi_max\.", r"^(ps_)?uplift",
+             r"^(ps_)?settlement", r"^misfit")
+    rank = lambda k: next((i for i, p in enumerate(kinds) if re.search(p, k)), len(kinds))
+    metrics = sorted(acted, key=rank)[:6] or list(per_metric)[:1]
+    # One parameter order for every panel (labels on the first only): by the sum over the panels of
+    # each parameter's index over the panel's largest.
+    weight = {}
+    for name in metrics:
+        top = max(float(r[col[key]]) for r in per_metric[name]) or 1.0
+        for r in per_metric[name]:
+            weight[r[col["parameter"]]] = weight.get(r[col["parameter"]], 0.0) + float(r[col[key]]) / top
+    order = sorted(weight, key=lambda p: (weight[p], p))
     f = new_figure(m, fig, layout="constrained")
     sobol = fig["method"] == "sobol"
     for i, name in enumerate(metrics):
         ax = f.add_subplot(1, len(metrics), i + 1)
-        rs = per_metric[name]
-        key = "st" if sobol else "mu_star"
-        rs = sorted(rs, key=lambda r: float(r[col[key]]))
+        by_param = {r[col["parameter"]]: r for r in per_metric[name]}
+        rs = [by_param[p] for p in order if p in by_param]
         y = np.arange(len(rs))
         labels = [r[col["parameter"]] for r in rs]
         if sobol:
@@ -422,7 +435,7 @@ def plot_tornado(m, fig):
                 f.supxlabel("elementary effect (metric units per unit of probability)", fontsize=8)
         ax.set_yticks(y)
         ax.set_yticklabels(labels if i == 0 else [""] * len(labels), fontsize=7)
-        ax.set_title(name, fontsize=8)
+        ax.set_title(name.replace(".", ".\n", 1) if len(name) > 24 else name, fontsize=7)
         ax.grid(True, axis="x", lw=0.3, alpha=0.6)
         if i == 0:
             ax.legend(fontsize=7)

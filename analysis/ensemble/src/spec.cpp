@@ -92,7 +92,7 @@ Distribution read_distribution(const TomlTable& t) {
     d.b = number("upper");
     if (!(d.a < d.b)) throw t.error("upper", fmt::format("uniform bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
     finite_width("uniform", std::numeric_limits<double>::max());
-    t.reject_unknown({"path", "paths", "distribution", "lower", "upper"});
+    t.reject_unknown({"name", "path", "paths", "distribution", "lower", "upper"});
     return d;
   }
   if (kind == "triangular") {
@@ -103,7 +103,7 @@ Distribution read_distribution(const TomlTable& t) {
     if (!(d.a < d.b)) throw t.error("upper", fmt::format("triangular bounds reversed or equal: lower {:g} >= upper {:g}", d.a, d.b));
     if (d.c < d.a || d.c > d.b) throw t.error("mode", fmt::format("mode {:g} outside [lower, upper] = [{:g}, {:g}]", d.c, d.a, d.b));
     finite_width("triangular", 1e150);
-    t.reject_unknown({"path", "paths", "distribution", "lower", "mode", "upper"});
+    t.reject_unknown({"name", "path", "paths", "distribution", "lower", "mode", "upper"});
     return d;
   }
   // Unbounded laws: their values within 9 standard deviations (probability 1 - 2e-19, beyond any
@@ -116,7 +116,7 @@ Distribution read_distribution(const TomlTable& t) {
     if (!(std::abs(d.a) + 9 * d.b <= std::numeric_limits<double>::max()))
       throw t.error("std", fmt::format("normal({:g}, {:g}) reaches beyond the largest double within 9 std (expected |mean| + 9 std "
                                        "<= {:g})", d.a, d.b, std::numeric_limits<double>::max()));
-    t.reject_unknown({"path", "paths", "distribution", "mean", "std", "lower", "upper"});
+    t.reject_unknown({"name", "path", "paths", "distribution", "mean", "std", "lower", "upper"});
   } else if (kind == "lognormal") {
     d.kind = DistributionKind::lognormal;
     d.a = positive("median");
@@ -124,7 +124,7 @@ Distribution read_distribution(const TomlTable& t) {
     if (!(std::abs(std::log(d.a)) + 9 * d.b < 700))
       throw t.error("sigma_log", fmt::format("lognormal(median {:g}, sigma_log {:g}) spans more than doubles hold within 9 sigma_log "
                                              "(expected |ln median| + 9 sigma_log < 700)", d.a, d.b));
-    t.reject_unknown({"path", "paths", "distribution", "median", "sigma_log", "lower", "upper"});
+    t.reject_unknown({"name", "path", "paths", "distribution", "median", "sigma_log", "lower", "upper"});
   } else {
     throw t.error("distribution", fmt::format("unknown distribution '{}' (expected uniform, normal, lognormal or triangular; "
                                               "normal and lognormal take lower/upper to truncate)", kind));
@@ -189,7 +189,13 @@ EnsembleSpec read_spec(const std::string& path) {
     if (p.paths.empty()) throw t.error("paths", "is empty");
     for (const auto& q : p.paths)
       if (!seen.insert(q).second) throw t.error(t.has("path") ? "path" : "paths", fmt::format("'{}' is named twice", q));
-    p.name = p.paths.front();
+    // The name in every table and chart: `name`, or the first path (one value set on several paths,
+    // e.g. the friction of every fault, reads better under a name of its own).
+    p.name = t.has("name") ? t.string("name") : p.paths.front();
+    if (p.name.empty() || p.name.find_first_of(",\"\n\r") != std::string::npos)
+      throw t.error("name", "must be non-empty text without commas, quotes or line breaks (it heads a CSV column)");
+    for (const auto& other : s.parameters)
+      if (other.name == p.name) throw t.error(t.has("name") ? "name" : "path", fmt::format("'{}' names two parameters", p.name));
     p.distribution = read_distribution(t);
     s.parameters.push_back(std::move(p));
   }

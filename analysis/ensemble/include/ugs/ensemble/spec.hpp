@@ -38,7 +38,7 @@ struct Distribution {
 };
 
 struct Parameter {
-  std::string name;                        // the first path (as in tables)
+  std::string name;                        // `name`, or the first path (as in tables)
   std::vector<std::string> paths;          // case-file paths set to the same value
   Distribution distribution;
   std::string where;                       // "ensemble.toml:12" for messages
