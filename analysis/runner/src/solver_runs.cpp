@@ -227,8 +227,15 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
   const std::string name = entry_name(values);
   const std::string k = key(values);
   const fs::path entry = entry_path(name);
+  // The run's folder is .tmp-<entry>: the solver writes its own command line (and so this folder's
+  // name) into its outputs, and the same run must write the same bytes. Another process running the
+  // same entry into a shared cache (or a folder left by a killed run) holds that name: then a name
+  // of this process's own.
   static std::atomic<unsigned> counter{0};
-  const fs::path tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-{}-{}", name, ::getpid(), counter++);
+  fs::path tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}", name);
+  std::error_code made;
+  fs::create_directories(setup_.cache_dir, made);
+  if (!fs::create_directory(tmp, made) || made) tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-{}-{}", name, ::getpid(), counter++);
   const fs::path failed = failed_path(name);
   // Whatever happens below, no temporary folder stays: it becomes the entry, or failed-<entry>
   // for a failed run (the error names it), or it is removed.
@@ -249,8 +256,10 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
     fs::rename(tmp, failed, ec);
     return ComputeError(fmt::format("{}: {} ({})", label, what, ec ? tmp.string() + " removed" : "kept in " + failed.string()));
   };
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  if (tmp.filename() != fmt::format(".tmp-{}", name)) {
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+  }
   write_text_file((tmp / "case.toml").string(), setup_.case_template->render(values));
   write_text_file((tmp / "inputs.txt").string(), inputs_);
   const fs::path out = tmp / "result.h5";
