@@ -256,7 +256,7 @@ double tet_signed_volume(const Point3& a, const Point3& b, const Point3& c, cons
   return (ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx)) / 6.0;
 }
 
-// The same operations as solver/fem/src/tet4.cpp, so that the two agree on a tetrahedron at the limit.
+// The Jacobian's determinant as solver/fem/src/tet4.cpp forms it (edges from p0, a . (b x c)).
 double tet_volume_ratio(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
   const double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
   const double b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};

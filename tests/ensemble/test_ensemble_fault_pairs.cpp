@@ -12,6 +12,7 @@
 
 #include "run_tool.hpp"
 #include "solve_box.hpp"
+#include "still_result.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
@@ -57,13 +58,7 @@ fs::path make_case() {
   test::spit(dir / "case.toml", test::solve_box_case(3.0) + "\n[[pool]]\nname = \"Pool C\"\nmaterials = [\"pool_c\"]\nschedule = \"" +
                                     (dir / "pool_c.csv").string() + "\"\nreference_pressure_MPa = 15.2\n");
   // A result to copy: u = 0 at the two dates (the members' surface metrics are 0, not the subject).
-  FieldSeriesWriter w((dir / "template.h5").string(), m);
-  for (const std::string date : {"2013-05-01", "2013-11-01"}) {
-    const Field u{"u", 3, std::vector<double>(3 * m.num_nodes(), 0.0)};
-    const Field nf[] = {u};
-    w.add_step(date, double(*parse_iso_date(date)), nf);
-  }
-  w.commit();
+  test::write_still_result((dir / "template.h5").string(), m, {"2013-05-01", "2013-11-01"});
   test::spit(dir / "fake.sh", fake_solver(dir, false));
   test::spit(dir / "fake_shift.sh", fake_solver(dir, true));
   test::spit(dir / "lhs.toml", "[design]\nmethod = \"lhs\"\nmembers = 4\nseed = 5\n\n[[parameter]]\npath = \"material.pool_c.c_R\"\n"

@@ -12,6 +12,7 @@
 
 #include "run_tool.hpp"
 #include "solve_box.hpp"
+#include "still_result.hpp"
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/fields.hpp"
 #include "ugs/formats/msh.hpp"
@@ -50,15 +51,7 @@ TEST(EnsembleForecastParams, MembersDifferingOnlyInSeismicityShareOneRun) {
   test::spit(dir / "case.toml", test::solve_box_case(3.0) +
                                     "\n[seismicity]\nA_sigma_MPa = 0.05\nstressing_rate_MPa_per_yr = 1e-3\n"
                                     "background_rate_per_yr_km2 = 0.2\nM_c = 1.5\nb_value = 1.0\n");
-  {
-    FieldSeriesWriter w((dir / "template.h5").string(), m);
-    for (const std::string date : {"2020-01-01", "2021-01-01"}) {
-      const Field u{"u", 3, std::vector<double>(3 * m.num_nodes(), 0.0)};
-      const Field nf[] = {u};
-      w.add_step(date, double(*parse_iso_date(date)), nf);
-    }
-    w.commit();
-  }
+  test::write_still_result((dir / "template.h5").string(), m, {"2020-01-01", "2021-01-01"});
   test::spit(dir / "fake.sh", fake_solver(dir));
   test::spit(dir / "morris.toml",
              "[design]\nmethod = \"morris\"\nmembers = 6\nlevels = 2\nseed = 3\n\n"

@@ -105,6 +105,19 @@ TEST(TurningPointExtremes, ContainEveryNewLow) {
 
 // Turning windows (steps = "turning-windows"): a turn is secured by any date where its element is
 // within the tolerance of its extreme; the fewest dates that meet every window.
+namespace {
+
+// The windows of the turns of a one-element history (both passes over it, as turning_points makes).
+ugs::mech::TurnWindows windows_of(const std::vector<std::vector<double>>& h, double tolerance) {
+  TurningPoints tp(tolerance);
+  for (const auto& dp : h) tp.add(dp);
+  ugs::mech::TurnWindows tw(tp.turn_list(), 1, tolerance);
+  for (const auto& dp : h) tw.add(dp);
+  return tw;
+}
+
+}  // namespace
+
 TEST(TurnWindows, AFlatLowHasAWideWindow) {
   const std::vector<std::vector<double>> h{{0}, {-2e6}, {-3e6}, {-3e6 + 500}, {-3e6 + 800}, {-1e6}, {-1e6}};
   TurningPoints tp(1e3);
@@ -112,8 +125,7 @@ TEST(TurnWindows, AFlatLowHasAWideWindow) {
   ASSERT_EQ(tp.turn_list().size(), 1u);
   EXPECT_EQ(tp.turn_list()[0].date, 2);
   EXPECT_EQ(tp.turn_list()[0].last_within, 4);
-  ugs::mech::TurnWindows tw(tp.turn_list(), 1, 1e3);
-  for (const auto& dp : h) tw.add(dp);
+  const ugs::mech::TurnWindows tw = windows_of(h, 1e3);
   ASSERT_EQ(tw.windows().size(), 1u);
   EXPECT_EQ(tw.windows()[0].first, 2);
   EXPECT_EQ(tw.windows()[0].last, 4);
@@ -122,10 +134,7 @@ TEST(TurnWindows, AFlatLowHasAWideWindow) {
 TEST(TurnWindows, AWindowStartsBeforeTheLowWhenThePressureIsAlreadyWithinIt) {
   // -3e6 + 900 on date 1 is within 1 kPa of the low -3e6 on date 2: the window is [1, 2].
   const std::vector<std::vector<double>> h{{0}, {-3e6 + 900}, {-3e6}, {-1e6}};
-  TurningPoints tp(1e3);
-  for (const auto& dp : h) tp.add(dp);
-  ugs::mech::TurnWindows tw(tp.turn_list(), 1, 1e3);
-  for (const auto& dp : h) tw.add(dp);
+  const ugs::mech::TurnWindows tw = windows_of(h, 1e3);
   ASSERT_EQ(tw.windows().size(), 1u);
   EXPECT_EQ(tw.windows()[0].first, 1);
   EXPECT_EQ(tw.windows()[0].last, 2);

@@ -79,8 +79,13 @@ std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& w
   // One run per entry: members with the same solver values (forecast-only parameters aside) share
   // it, the first of them runs it and the others take its outcome afterwards.
   std::vector<std::size_t> runs, later;  // positions in `which`
-  std::map<std::string, std::size_t> first;
-  for (std::size_t j = 0; j < which.size(); ++j) (first.emplace(entry(which[j]), j).second ? runs : later).push_back(j);
+  std::vector<std::size_t> first(which.size());  // per position: that of the member running its entry
+  std::map<std::string, std::size_t> runner_of;
+  for (std::size_t j = 0; j < which.size(); ++j) {
+    const auto [it, fresh] = runner_of.emplace(entry(which[j]), j);
+    first[j] = it->second;
+    (fresh ? runs : later).push_back(j);
+  }
   std::atomic<std::size_t> next{0};
   std::mutex lock;
   auto worker = [&] {
@@ -113,7 +118,7 @@ std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& w
   for (auto& t : threads) t.join();
   for (std::size_t j : later) {
     const std::size_t k = which[j];
-    MemberStatus s = out[first.at(entry(k))];
+    MemberStatus s = out[first[j]];
     s.ran_now = false;
     s.seconds = 0;
     out[j] = s;

@@ -176,7 +176,8 @@ void seismicity_metrics(const std::string& folder, const std::vector<Phase>& win
   s.inputs = pairs;
   s.case_file = (fs::path(folder) / "case.toml").string();
   for (const auto& w : windows) s.windows.push_back(format_iso_date(w.start) + "/" + format_iso_date(w.end));
-  const CaseFile c = forecast_case ? *forecast_case : read_case_file(s.case_file);
+  std::optional<CaseFile> own;
+  const CaseFile& c = forecast_case ? *forecast_case : own.emplace(read_case_file(s.case_file));
   const seismicity::StressHistory h = seismicity::read_pair_csvs(pairs);
   const seismicity::Forecast fc = seismicity::compute(s, c, h);
   const std::vector<double>& magnitudes = c.seismicity->magnitudes;

@@ -19,6 +19,7 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/formats/toml_reader.hpp"
+#include "remove_at_exit.hpp"
 
 namespace ugs::runner {
 
@@ -212,13 +213,7 @@ CaseFile read_rendered_case(const CaseTemplate& tmpl, const std::vector<std::pai
   const int fd = ::mkstemp(copy.data());
   if (fd < 0) throw ComputeError(fmt::format("cannot create a temporary file in {}", fs::temp_directory_path().string()));
   ::close(fd);
-  struct Remove {
-    std::string path;
-    ~Remove() {
-      std::error_code ec;
-      fs::remove(path, ec);
-    }
-  } remove_copy{copy};
+  const RemoveAtExit remove_copy(copy);
   {
     std::ofstream f(copy);
     f << tmpl.render(values);

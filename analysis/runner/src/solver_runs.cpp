@@ -15,6 +15,7 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/runner/content_hash.hpp"
 #include "ugs/runner/subprocess.hpp"
+#include "remove_at_exit.hpp"
 
 namespace ugs::runner {
 
@@ -233,19 +234,18 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
   // of this process's own.
   static std::atomic<unsigned> counter{0};
   fs::path tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}", name);
-  std::error_code made;
-  fs::create_directories(setup_.cache_dir, made);
-  if (!fs::create_directory(tmp, made) || made) tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-{}-{}", name, ::getpid(), counter++);
+  std::error_code ec_made;
+  fs::create_directories(setup_.cache_dir, ec_made);
+  const bool own_name = !ec_made && fs::create_directory(tmp, ec_made) && !ec_made;  // created here, empty
+  if (!own_name) {
+    tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-{}-{}", name, ::getpid(), counter++);
+    fs::remove_all(tmp);
+    fs::create_directories(tmp);
+  }
   const fs::path failed = failed_path(name);
   // Whatever happens below, no temporary folder stays: it becomes the entry, or failed-<entry>
   // for a failed run (the error names it), or it is removed.
-  struct TmpGuard {
-    fs::path path;
-    ~TmpGuard() {
-      std::error_code ec;
-      if (!path.empty()) fs::remove_all(path, ec);
-    }
-  } guard{tmp};
+  RemoveAtExit guard(tmp);
   auto fail = [&](const std::string& what) {
     std::error_code ec;
     fs::remove_all(failed, ec);
@@ -256,10 +256,6 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
     fs::rename(tmp, failed, ec);
     return ComputeError(fmt::format("{}: {} ({})", label, what, ec ? tmp.string() + " removed" : "kept in " + failed.string()));
   };
-  if (tmp.filename() != fmt::format(".tmp-{}", name)) {
-    fs::remove_all(tmp);
-    fs::create_directories(tmp);
-  }
   write_text_file((tmp / "case.toml").string(), setup_.case_template->render(values));
   write_text_file((tmp / "inputs.txt").string(), inputs_);
   const fs::path out = tmp / "result.h5";
@@ -294,7 +290,7 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
   fs::remove_all(entry, ec);
   fs::rename(tmp, entry, ec);
   if (!ec) {
-    guard.path.clear();
+    guard.release();
     fs::remove_all(failed, ec);  // an earlier failure at these values is history
   }
   // else another process won the race: its entry is as good (the guard removes ours)

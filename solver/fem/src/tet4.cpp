@@ -15,10 +15,8 @@ Tet4 tet4(const std::array<Point3, 4>& x) {
   const double cxa[3] = {c[1] * a[2] - c[2] * a[1], c[2] * a[0] - c[0] * a[2], c[0] * a[1] - c[1] * a[0]};
   const double axb[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
   const double det = a[0] * bxc[0] + a[1] * bxc[1] + a[2] * bxc[2];
-  const double scale = std::abs(a[0]) + std::abs(a[1]) + std::abs(a[2]) + std::abs(b[0]) + std::abs(b[1]) +
-                       std::abs(b[2]) + std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]);
-  // The limit ugs-meshgen checks every tetrahedron against (tet_is_degenerate, formats/mesh.hpp).
-  if (!(std::abs(det) > kDegenerateTetRatio * scale * scale * scale)) throw std::domain_error("degenerate tetrahedron");
+  // The one flat test, which ugs-meshgen checks every tetrahedron against (formats/mesh.hpp).
+  if (tet_is_degenerate(x[0], x[1], x[2], x[3])) throw std::domain_error("degenerate tetrahedron");
   Tet4 t;
   t.volume = det / 6.0;
   for (int k = 0; k < 3; ++k) {
