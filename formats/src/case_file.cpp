@@ -190,6 +190,27 @@ FaultSpec parse_fault(const TomlTable& t, const Collect& ok) {
   return f;
 }
 
+SealSpec parse_seal(const TomlTable& t, const Collect& ok) {
+  t.reject_unknown({"material", "cohesion_MPa", "friction_deg", "tensile_strength_MPa"}, ok.errors);
+  SealSpec s;
+  s.where = t.where();
+  ok([&] { s.material = t.string("material"); });
+  ok([&] {
+    s.cohesion_Pa = t.number_or("cohesion_MPa", 0.0) * kMPa;
+    if (!(s.cohesion_Pa >= 0 && std::isfinite(s.cohesion_Pa))) throw t.error("cohesion_MPa", "must be finite and not negative");
+  });
+  ok([&] {
+    s.friction_deg = t.number_or("friction_deg", 30.0);
+    if (!(s.friction_deg > 0 && s.friction_deg < 90)) throw t.error("friction_deg", "must lie in (0, 90) degrees");
+  });
+  ok([&] {
+    s.tensile_strength_Pa = t.number_or("tensile_strength_MPa", 0.0) * kMPa;
+    if (!(s.tensile_strength_Pa >= 0 && std::isfinite(s.tensile_strength_Pa)))
+      throw t.error("tensile_strength_MPa", "must be finite and not negative");
+  });
+  return s;
+}
+
 // The entry, or nothing when its group cannot be read (then it loads nothing and is not compared).
 std::optional<TractionSpec> parse_traction(const TomlTable& t, const Collect& ok) {
   t.reject_unknown({"group", "traction_MPa", "in_situ"}, ok.errors);
@@ -377,6 +398,23 @@ void read_faults(const TomlTable& root, CaseFile& c, const Collect& ok) {
   std::vector<TomlTable> faults;
   ok([&] { faults = root.tables("fault"); });
   for (const auto& t : faults) c.faults.push_back(parse_fault(t, ok));
+}
+
+// [[seal]]: one entry per material, each naming a [[material]].
+void read_seals(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::vector<TomlTable> seals;
+  ok([&] { seals = root.tables("seal"); });
+  std::set<std::string> named;
+  for (const auto& t : seals) {
+    SealSpec s = parse_seal(t, ok);
+    if (!s.material.empty()) {
+      if (!c.material(s.material))
+        ok([&] { throw t.error("material", fmt::format("'{}' is not a [[material]] of the case", s.material)); });
+      else if (!named.insert(s.material).second)
+        ok([&] { throw t.error("material", fmt::format("'{}' is a seal twice (one [[seal]] per material)", s.material)); });
+    }
+    c.seals.push_back(std::move(s));
+  }
 }
 
 // The numbers of [solver], each with the range ugs-solve can use and why, checked here and nowhere
@@ -589,7 +627,7 @@ CaseFile read_case_file(const std::string& path, ErrorList& errors) {
   const TomlTable root = TomlTable::parse_file(path);  // (a file that cannot be read or parsed stops here)
   const Collect ok{errors};
   root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "boundary_traction", "fault",
-                       "solver", "output", "scenario", "seismicity"},
+                       "solver", "output", "scenario", "seismicity", "seal"},
                       errors);
   CaseFile c;
   c.path = path;
@@ -598,6 +636,7 @@ CaseFile read_case_file(const std::string& path, ErrorList& errors) {
   read_materials_and_pools(root, c, ok);
   read_boundaries(root, c, ok);
   read_faults(root, c, ok);
+  read_seals(root, c, ok);
   read_solver(root, c, ok);
   read_scenario(root, c, ok);
   read_output(root, c, ok);

@@ -6,6 +6,9 @@
 //   mech_make_case column DIR [--rule sigma-max]   V1 oedometer column, path 20-26-23-28-25 MPa
 //   mech_make_case geertsma DIR [--refine F]       V2 disk reservoir (quarter domain, symmetry rollers)
 //   mech_make_case small DIR [--refine F]           layered model, two pools, monthly across an inversion
+//   mech_make_case caprock DIR --dp MPa --cohesion MPa --friction DEG --tensile MPa
+//                                                   a box of seal rock under a uniform pressure change
+//                                                   (oedometric: lateral rollers, bottom fixed), docs/caprock.md
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -101,9 +104,29 @@ void make_small(const fs::path& dir, double refine) {
 
 }  // namespace
 
+// ---- Caprock: the closed form of tests/mechanics/test_caprock.cpp ---------------------------------
+// A 200 m x 200 m x 100 m box of one linear-elastic seal (E 10 GPa, nu 0.25, Biot 1) at 900-1000 m
+// depth, k0 0.7, every element under the same pressure change dp on 2001-01-01 (0 on 2000-01-01).
+void make_caprock(const fs::path& dir, double dp_MPa, double cohesion, double friction, double tensile) {
+  BoxMeshSpec spec;
+  spec.x = linspace(0, 200, 2);
+  spec.y = linspace(0, 200, 2);
+  spec.z = linspace(-1000, -900, 4);
+  spec.material = [](const Point3&) { return std::string("seal"); };
+  const Mesh m = make_box_mesh(spec);
+  write_msh(m, (dir / "mesh.msh").string());
+  CaseToml c("# Caprock integrity: a box of seal rock, oedometric, uniform pressure change (docs/caprock.md)\n");
+  c.initial_stress({.surface_elevation_m = 0, .k0 = 0.7}).material(linear("seal", 10000, 0.25));
+  c.boundary({.fixed = {"bottom"}, .rollers = {"west", "east", "south", "north"}, .free = {"top"}});
+  c.seal({.material = "seal", .cohesion_MPa = cohesion, .friction_deg = friction, .tensile_strength_MPa = tensile});
+  c.table("scenario", "max_scale = 10\nscale_tolerance = 0.002\n");
+  write_text(dir / "case.toml", c.str());
+  write_pressure(dir / "flow.h5", m, uniform_series({"2000-01-01", "2001-01-01"}, {0.0, dp_MPa * 1e6}));
+}
+
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: mech_make_case column|geertsma|small DIR [options]\n");
+    std::fprintf(stderr, "usage: mech_make_case column|geertsma|small|caprock DIR [options]\n");
     return 2;
   }
   const std::string kind = argv[1];
@@ -118,6 +141,9 @@ int main(int argc, char** argv) {
     if (kind == "column") make_column(dir, opt.count("--rule") ? opt["--rule"] : "sigma-max");
     else if (kind == "geertsma") make_geertsma(dir, opt.count("--refine") ? std::stod(opt["--refine"]) : 1.0);
     else if (kind == "small") make_small(dir, opt.count("--refine") ? std::stod(opt["--refine"]) : 1.0);
+    else if (kind == "caprock")
+      make_caprock(dir, std::stod(opt.at("--dp")), std::stod(opt.at("--cohesion")), std::stod(opt.at("--friction")),
+                   std::stod(opt.at("--tensile")));
     else {
       std::fprintf(stderr, "mech_make_case: unknown kind '%s'\n", kind.c_str());
       return 2;

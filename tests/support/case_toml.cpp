@@ -78,6 +78,15 @@ CaseToml& CaseToml::boundary(const Boundary& b) {
   return *this;
 }
 
+CaseToml& CaseToml::seal(const Seal& s) {
+  section("[[seal]]");
+  add("material = \"" + s.material + "\"\n");
+  add("cohesion_MPa = " + number(s.cohesion_MPa) + "\n");
+  add("friction_deg = " + number(s.friction_deg) + "\n");
+  add("tensile_strength_MPa = " + number(s.tensile_strength_MPa) + "\n");
+  return *this;
+}
+
 CaseToml& CaseToml::fault(const Fault& f) {
   section("[[fault]]");
   add("name = \"" + f.name + "\"\ncohesion_MPa = " + number(f.cohesion_MPa) + "\nfriction_deg = " + number(f.friction_deg) + "\n");

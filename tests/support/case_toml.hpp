@@ -87,6 +87,14 @@ struct Pool {
   std::string more{};  // further "key = value" lines as written
 };
 
+// [[seal]]: a material checked for caprock integrity, with the intact rock's strength.
+struct Seal {
+  std::string material{};
+  double cohesion_MPa = 0;
+  double friction_deg = 30;
+  double tensile_strength_MPa = 0;
+};
+
 class CaseToml : public TomlSections {
  public:
   explicit CaseToml(std::string head = "", Numbers numbers = Numbers::Plain, Layout layout = Layout::Spaced)
@@ -96,6 +104,7 @@ class CaseToml : public TomlSections {
   CaseToml& boundary(const Boundary& b);
   CaseToml& fault(const Fault& f);
   CaseToml& pool(const Pool& p);
+  CaseToml& seal(const Seal& s);
   // Any other table ([solver], [output], [scenario], [model]) with its lines as written.
   CaseToml& table(const std::string& name, const std::string& lines);
 };

@@ -33,7 +33,7 @@ struct Args {
   std::string mesh = "-", case_file, top, top_csv, state, restart, until, solver, partition = "ptscotch", steps, tolerance_of;
   std::vector<std::string> pressure, every_date_in;
   int checkpoint_every = -1;
-  std::string fault_output, fault_csv, fault_pairs_csv, fault_solver, scenario_csv;
+  std::string fault_output, fault_csv, fault_pairs_csv, fault_solver, scenario_csv, caprock_output, caprock_csv;
   std::optional<double> scale, tolerance;
   bool find_safe_scale = false;
   bool fault_pairs_every_step = false;
@@ -92,6 +92,8 @@ ugs::driver::RunSettings typed(const Args& a, const std::string& output) {
   f.scale = a.scale;
   f.find_safe_scale = a.find_safe_scale;
   f.pairs_every_step = a.fault_pairs_every_step;
+  s.caprock_fields = output_path(a.caprock_output, stem + "_caprock.h5");
+  s.caprock_table = output_path(a.caprock_csv, stem + "_caprock.csv");
   return s;
 }
 
@@ -157,8 +159,15 @@ int main(int argc, char** argv) {
   g->add_option("--scale", a.scale, "Scale of the pressure swing after the scenario's reference date (overrides the case)")
       ->check(ugs::cli::number_in(0, ugs::cli::kNoLimit));
   g->add_flag("--find-safe-scale", a.find_safe_scale,
-              "Search the smallest scale of the swing at which a fault patch reaches chi = 1 (maximum safe storage pressure)");
+              "Search the smallest scale of the swing at which a fault patch reaches chi = 1 or a [[seal]] element fails "
+              "(maximum safe storage pressure; also on a mesh without faults when the case has seals)");
   g->add_option("--scenario-csv", a.scenario_csv, "Scales tried by --find-safe-scale (default <output>_scenario.csv)");
+  auto* c = app.add_option_group("Caprock", "Cases with [[seal]] materials: caprock integrity (docs/caprock.md)");
+  c->add_option("--caprock-output", a.caprock_output,
+                "Seal elements at the output dates: pore pressure, fracture pressure, tensile and shear margins (HDF5 + "
+                "XDMF; default <output>_caprock.h5; 'none')");
+  c->add_option("--caprock-csv", a.caprock_csv,
+                "Per seal and step: the smallest tensile and shear margins and where (default <output>_caprock.csv; 'none')");
   app.footer("PETSc options follow a '--': ugs-solve ... -- -pc_type hypre -ksp_monitor -log_view");
 
   // Everything after "--" belongs to PETSc.

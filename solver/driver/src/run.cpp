@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "fault_part.hpp"
+#include "ugs/driver/caprock.hpp"
 #include "ugs/contact/contact.hpp"
 #include "ugs/driver/fault_state_file.hpp"
 #include "ugs/driver/names.hpp"
@@ -48,6 +49,8 @@ struct Root {
   contact::FaultModel fm;
   std::unique_ptr<mech::PressureHistory> history;
   std::unique_ptr<OutputSet> out;
+  std::unique_ptr<CaprockCheck> caprock;      // the [[seal]] elements (empty without seals)
+  std::unique_ptr<CaprockOutput> caprock_out;
   mech::SavedState restart;
   contact::FaultContact::Snapshot restart_faults;
   std::string restart_date;
@@ -59,7 +62,7 @@ struct Root {
 // Settings every rank agrees on (the case file is read on rank 0).
 struct Shared {
   int faulted = 0, linear = 0, partition = 0, max_newton = 25, max_substeps = 64, reuse = 1, fault_solver = 0, search = 0,
-      total_load = 0;
+      total_load = 0, caprock = 0;
   double tolerance = 1e-8, scale = 1, max_scale = 10, scale_tolerance = 0.01, ref_time = -INFINITY;
 };
 
@@ -118,6 +121,9 @@ private:
   }
   void log_later(int level, const std::string& s) { deferred_.emplace_back(level, s); }
   bool faulted() const { return set_.faulted != 0; }
+  bool caprock() const { return set_.caprock != 0; }
+  // The scenario (scale and safe-scale search) applies to runs with something to keep safe.
+  bool guarded() const { return faulted() || caprock(); }
 
   // 1. Inputs (rank 0): case, mesh, model (and faults), pressure history, restart state.
   void read_inputs() {
@@ -148,22 +154,30 @@ private:
         if (!R.cs.faults.empty())
           log_later(-1, fmt::format("{}: [[fault]] entries are ignored by the continuous model", R.cs.path));
       }
+      R.caprock = std::make_unique<CaprockCheck>(R.model, R.mesh, R.cs);
+      set_.caprock = R.caprock->empty() ? 0 : 1;
+      if (caprock())
+        log(1, fmt::format("caprock: {} element(s) of {} seal material(s) checked at every step", R.caprock->size(),
+                           R.cs.seals.size()));
       R.history = std::make_unique<mech::PressureHistory>(o_.pressure, R.mesh, R.model);
       log(1, fmt::format("pressure: {} file(s), {} dates, {} of {} elements under a pressure change", o_.pressure.size(),
                          R.history->steps().size(), R.history->forced_cells(), R.model.tets.size()));
       for (const auto& d : R.cs.output_dates) R.history->add_step(d, R.cs.path + ": [output] dates");
-      if (faulted()) {
+      if (guarded()) {
         if (!R.cs.scenario_reference_date.empty()) {
           R.history->add_step(R.cs.scenario_reference_date, R.cs.path + ": [scenario] reference_date");
           set_.ref_time = static_cast<double>(*parse_iso_date(R.cs.scenario_reference_date));
         } else {
           set_.ref_time = R.history->steps().front().time;
         }
-        set_.fault_solver = static_cast<int>(o_.faults.solver.value_or(*lookup(fault_solver_names(), R.cs.fault_solver)));
+        if (faulted())
+          set_.fault_solver = static_cast<int>(o_.faults.solver.value_or(*lookup(fault_solver_names(), R.cs.fault_solver)));
         set_.scale = o_.faults.scale.value_or(R.cs.scenario_scale);
         set_.search = o_.faults.find_safe_scale ? 1 : 0;
         set_.max_scale = R.cs.scenario_max_scale;
         set_.scale_tolerance = R.cs.scenario_tolerance;
+      } else if (o_.faults.find_safe_scale) {
+        throw InputError(o_.case_file, "--find-safe-scale: nothing to keep safe (the mesh has no fault and the case no [[seal]])");
       }
       set_.linear = static_cast<int>(o_.linear.value_or(*lookup(linear_solver_names(), R.cs.linear_solver)));
       set_.partition = static_cast<int>(o_.partition);
@@ -277,8 +291,16 @@ private:
       Root& R = *root_;
       R.out = std::make_unique<OutputSet>(o_, R.mesh, R.model, R.cs, faulted() ? &R.fm : nullptr);
       cell_fields_ = R.out->cell_fields();
+      if (caprock()) {
+        const std::vector<std::string> c{"ugs-solve caprock integrity per seal material and step: the smallest tensile margin "
+                                         "(fracture pressure S3 + T0 minus the pore pressure) and Mohr-Coulomb shear margin "
+                                         "of its elements (docs/caprock.md)",
+                                         o_.command_line};
+        R.caprock_out = std::make_unique<CaprockOutput>(o_.caprock_fields.value_or(""), o_.caprock_table.value_or(""),
+                                                        *R.caprock, c);
+      }
       release_distributed(R);
-      if (faulted()) {
+      if (guarded()) {
         R.ref_cell = R.history->cell_dp(set_.ref_time);
         R.ref_node = R.history->node_dp(set_.ref_time);
       }
@@ -296,31 +318,46 @@ private:
     if (steps_.size() == 0) log(-1, "no steps after the restart date: nothing to solve");
   }
 
-  // The pressure change of step i at scale s: per element (returned, rank 0) and, on a faulted
-  // mesh, per node pair (handed to the contact). Collective.
-  std::vector<double> load(std::size_t i, double s) {
-    std::vector<double> cell, pair;
+  // The pressure change of step i at scale s (rank 0): per element, and per node where the faults
+  // (per node pair, handed to the contact) or the seals need it. Collective.
+  struct Load {
+    std::vector<double> cell, node;
+  };
+  Load load(std::size_t i, double s) {
+    Load l;
+    std::vector<double> pair;
     mech::collective(comm_, [&] {
       if (rank_ != 0) return;
       Root& R = *root_;
-      cell = R.history->cell_dp(steps_.times[i]);
-      if (!faulted()) return;
-      std::vector<double> node = R.history->node_dp(steps_.times[i]);
+      l.cell = R.history->cell_dp(steps_.times[i]);
+      if (!guarded()) return;
+      l.node = R.history->node_dp(steps_.times[i]);
       if (steps_.times[i] > set_.ref_time && s != 1.0) {
-        scale_about(cell, R.ref_cell, s);
-        scale_about(node, R.ref_node, s);
+        scale_about(l.cell, R.ref_cell, s);
+        scale_about(l.node, R.ref_node, s);
       }
-      pair = pair_dp(R.fm, node);
+      if (faulted()) pair = pair_dp(R.fm, l.node);
     });
     if (contact_) contact_->set_pressure_change(pair);
-    return cell;
+    return l;
+  }
+
+  // The seals' check of the step just solved (rank 0 returns it; empty without seals). Collective.
+  CaprockStep check_caprock(const Load& l) {
+    CaprockStep st;
+    if (!caprock()) return st;
+    std::vector<double> stress = solver_->gather_cell_field(mech::CellField::Stress);
+    mech::collective(comm_, [&] {
+      if (rank_ == 0) st = root_->caprock->evaluate(stress, l.cell, l.node);
+    });
+    return st;
   }
 
   // The state at the reference date, for the safe-scale search's reruns.
   void keep_reference_state() {
     mech::SavedState st = solver_->gather_state();
     if (rank_ == 0) root_->snapshot = std::move(st);
-    contact_snapshot_ = contact_->save();
+    if (contact_) contact_snapshot_ = contact_->save();
     have_snapshot_ = true;
   }
 
@@ -360,10 +397,10 @@ private:
       const std::string& date = steps_.dates[i];
       const double time = steps_.times[i];
       const std::string label = fmt::format("step {}/{} ({})", i + 1, n, date);
-      const std::vector<double> dp = load(i, set_.scale);
+      const Load dp = load(i, set_.scale);
       contact::ContactStats before;
       if (contact_) before = contact_->stats();
-      const mech::StepReport rep = solver_->advance(dp, label);
+      const mech::StepReport rep = solver_->advance(dp.cell, label);
       sum_.seconds_solve += rep.seconds;
       sum_.newton_iterations += rep.newton_iterations;
       sum_.linear_iterations += rep.linear_iterations;
@@ -387,21 +424,26 @@ private:
       const std::vector<double> u = solver_->gather_displacement();
       contact::PairResults pr;
       if (contact_) pr = contact_->gather();
+      const CaprockStep cap = check_caprock(dp);
       std::string note;
       mech::collective(comm_, [&] {
         if (rank_ != 0) return;
         Root& R = *root_;
+        Watch before_reference;
+        Watch& watch = time > set_.ref_time ? base_ : before_reference;
         if (faulted()) {
           const contact::FaultFields ff = contact::derive_fault_fields(R.fm, pr);
-          if (time > set_.ref_time) base_.see(R.fm, ff, date);
-          else {
-            Watch w;
-            w.see(R.fm, ff, date);
-            critical_before_ = critical_before_ || w.critical;
-          }
+          watch.see(R.fm, ff, date);
           note = "; " + fault_step_note(R.fm, ff);
           R.out->faults()->add(date, time, ff, steps_.output[i], steps_.output[i] || o_.faults.pairs_every_step);
         }
+        if (caprock()) {
+          watch.see(cap, date);
+          note += fmt::format("; seals: tensile margin {:.3f} MPa, shear margin {:.3f} MPa", cap.tensile.margin_Pa * 1e-6,
+                              cap.shear.margin_Pa * 1e-6);
+          if (R.caprock_out) R.caprock_out->add(date, time, cap, steps_.output[i]);
+        }
+        critical_before_ = critical_before_ || before_reference.critical;
         R.out->write_step(date, time, u, steps_.output[i], *R.history);
       });
       if (steps_.output[i])
@@ -437,24 +479,32 @@ private:
   // One trial of the search: the steps after the reference date rerun at scale s.
   Watch trial(double s, CsvWriter* table) {
     solver_->restore_state(rank_ == 0 ? root_->snapshot : mech::SavedState{});
-    contact_->restore(contact_snapshot_);
+    if (contact_) contact_->restore(contact_snapshot_);
     Watch w;
     std::string note;
     for (std::size_t i = first_after_; i < steps_.size(); ++i) {
-      const std::vector<double> dp = load(i, s);
+      const Load dp = load(i, s);
       if (rank_ == 0)
-        for (double v : dp) w.dp_max = std::max(w.dp_max, v), w.dp_min = std::min(w.dp_min, v);
-      const mech::StepReport rep = solver_->advance(dp, fmt::format("scale {:.4g}, {}", s, steps_.dates[i]));
+        for (double v : dp.cell) w.dp_max = std::max(w.dp_max, v), w.dp_min = std::min(w.dp_min, v);
+      const mech::StepReport rep = solver_->advance(dp.cell, fmt::format("scale {:.4g}, {}", s, steps_.dates[i]));
       sum_.newton_iterations += rep.newton_iterations;
       sum_.linear_iterations += rep.linear_iterations;
       if (!rep.converged) {
         // Newton fails only where faults slip widely: count it as critical.
         note = "Newton failed: " + rep.failure;
-        if (rank_ == 0 && !w.critical) w.critical = true, w.date = steps_.dates[i], w.max_chi = std::max(w.max_chi, 1.0);
+        if (rank_ == 0 && !w.critical) {
+          w.critical = true, w.date = steps_.dates[i];
+          if (faulted()) w.limiter = Limiter::FaultChi, w.max_chi = std::max(w.max_chi, 1.0);
+        }
         break;
       }
-      const contact::PairResults pr = contact_->gather();
-      if (rank_ == 0) w.see(root_->fm, contact::derive_fault_fields(root_->fm, pr), steps_.dates[i]);
+      contact::PairResults pr;
+      if (contact_) pr = contact_->gather();
+      const CaprockStep cap = check_caprock(dp);
+      if (rank_ == 0) {
+        if (faulted()) w.see(root_->fm, contact::derive_fault_fields(root_->fm, pr), steps_.dates[i]);
+        if (caprock()) w.see(cap, steps_.dates[i]);
+      }
     }
     int c = w.critical ? 1 : 0;
     MPI_Bcast(&c, 1, MPI_INT, 0, comm_);
@@ -463,10 +513,18 @@ private:
       if (rank_ != 0) return;
       table->number(s, 6).number(w.max_chi, 6).integer(w.critical ? 1 : 0).text(w.fault).text(w.date);
       table->number(w.at[0], 2).number(w.at[1], 2).number(w.at[2], 2);
-      table->number(w.dp_max * 1e-6, 4).number(w.dp_min * 1e-6, 4).text(note).end_row();
+      table->number(w.dp_max * 1e-6, 4).number(w.dp_min * 1e-6, 4);
+      table->text(limiter_text(w.limiter)).text(w.seal);
+      if (caprock()) table->number(w.min_tensile_margin * 1e-6, 4).number(w.min_shear_margin * 1e-6, 4);
+      else table->text("").text("");
+      table->text(note).end_row();
     });
-    log(0, fmt::format("scale {:.4g}: max chi {:.4f}{}", s, w.max_chi,
-                       w.critical ? fmt::format(" — critical: fault {} on {}", w.fault, w.date) : ""));
+    log(0, fmt::format("scale {:.4g}: {}{}", s,
+                       faulted() ? fmt::format("max chi {:.4f}", w.max_chi)
+                                 : fmt::format("seal margins {:.3f} MPa (tensile), {:.3f} MPa (shear)",
+                                               w.min_tensile_margin * 1e-6, w.min_shear_margin * 1e-6),
+                       w.critical ? fmt::format(" — critical: {} on {}", w.what().empty() ? "Newton failed" : w.what(), w.date)
+                                  : ""));
     return w;
   }
 
@@ -480,25 +538,31 @@ private:
     mech::collective(comm_, [&] {
       if (rank_ != 0) return;
       const std::vector<std::string> c{"ugs-solve safe-scale search: dp_s(t) = dp(t_ref) + scale (dp(t) - dp(t_ref)) after the "
-                                       "reference date; critical = some fault patch reaches chi = 1",
+                                       "reference date; critical = some fault patch reaches chi = 1 or a seal element fails "
+                                       "(limiter: what failed first; margins: the smallest of the seals over the trial)",
                                        o_.command_line};
-      table = std::make_unique<CsvWriter>(o_.faults.scenario_table,
-                                          std::vector<std::string>{"scale", "max_chi", "critical", "fault", "date", "x_m", "y_m",
-                                                                   "z_m", "dp_max_MPa", "dp_min_MPa", "note"},
-                                          c);
+      table = std::make_unique<CsvWriter>(
+          o_.faults.scenario_table,
+          std::vector<std::string>{"scale", "max_chi", "critical", "fault", "date", "x_m", "y_m", "z_m", "dp_max_MPa",
+                                   "dp_min_MPa", "limiter", "seal", "min_tensile_margin_MPa", "min_shear_margin_MPa", "note"},
+          c);
     });
     if (critical_before_) {
       sum_.critical_before = true;
-      log(-1, "a fault patch reaches chi = 1 before or at the reference date: no scale of the later swing is safe");
+      log(-1, "a fault patch reaches chi = 1 or a seal fails before or at the reference date: no scale of the later swing is safe");
     } else {
       const SafeScale safe = search_safe_scale(set_.max_scale, set_.scale_tolerance, [&](double s) { return trial(s, table.get()); });
       if (safe.found)
-        log(0, fmt::format("maximum safe scale {:.4g} (critical at {:.4g}: fault {} first reaches chi = 1 on {} at ({:.0f}, "
+        log(0, fmt::format("maximum safe scale {:.4g} (critical at {:.4g}: {} on {} at ({:.0f}, "
                            "{:.0f}, {:.0f})); the pressure change then peaks at {:+.3f} MPa / {:+.3f} MPa",
-                           safe.safe, safe.critical, safe.fault, safe.date, safe.at[0], safe.at[1], safe.at[2],
-                           safe.peak_dp_max * 1e-6, safe.peak_dp_min * 1e-6));
+                           safe.safe, safe.critical, safe.what.empty() ? "Newton failed" : safe.what, safe.date, safe.at[0],
+                           safe.at[1], safe.at[2], safe.peak_dp_max * 1e-6, safe.peak_dp_min * 1e-6));
       else
-        log(0, fmt::format("no fault patch reaches chi = 1 up to scale {:.4g} (max_scale)", safe.safe));
+        log(0, fmt::format("no {} up to scale {:.4g} (max_scale)",
+                           faulted() && caprock() ? "fault patch reaches chi = 1 and no seal fails"
+                           : faulted()            ? "fault patch reaches chi = 1"
+                                                  : "seal fails",
+                           safe.safe));
       sum_.safe = safe;
     }
     mech::collective(comm_, [&] {
@@ -512,6 +576,7 @@ private:
       if (rank_ != 0) return;
       for (const auto& n : root_->history->notes()) log(-1, n);
       root_->out->commit();
+      if (root_->caprock_out) root_->caprock_out->commit();
     });
     if (contact_) {
       const contact::ContactStats& cst = contact_->stats();

@@ -11,11 +11,42 @@ void Watch::see(const contact::FaultModel& fm, const contact::FaultFields& f, co
     if (f.chi[q] > max_chi) max_chi = f.chi[q];
     if (hit && !critical) {
       critical = true;
+      limiter = Limiter::FaultChi;
       fault = fm.faults[fm.pairs[q].fault].name;
       date = d;
       at = fm.pairs[q].x;
     }
   }
+}
+
+std::string limiter_text(Limiter l) {
+  switch (l) {
+    case Limiter::FaultChi: return "fault chi = 1";
+    case Limiter::CaprockTensile: return "caprock tensile failure";
+    case Limiter::CaprockShear: return "caprock shear failure";
+    case Limiter::None: break;
+  }
+  return "";
+}
+
+void Watch::see(const CaprockStep& st, const std::string& d) {
+  min_tensile_margin = std::min(min_tensile_margin, st.tensile.margin_Pa);
+  min_shear_margin = std::min(min_shear_margin, st.shear.margin_Pa);
+  if (critical) return;
+  // Tension first at one step: an open fracture is the more direct loss of the seal.
+  const CaprockWorst* w = st.tensile_failure() ? &st.tensile : st.shear_failure() ? &st.shear : nullptr;
+  if (!w) return;
+  critical = true;
+  limiter = st.tensile_failure() ? Limiter::CaprockTensile : Limiter::CaprockShear;
+  seal = w->material;
+  date = d;
+  at = w->at;
+}
+
+std::string Watch::what() const {
+  if (limiter == Limiter::FaultChi) return "fault " + fault + " first reaches chi = 1";
+  if (limiter != Limiter::None) return "seal " + seal + " fails first (" + limiter_text(limiter) + ")";
+  return "";
 }
 
 SafeScale search_safe_scale(double max_scale, double tolerance, const std::function<Watch(double)>& trial) {
@@ -40,7 +71,10 @@ SafeScale search_safe_scale(double max_scale, double tolerance, const std::funct
     }
     safe.found = true;
     safe.critical = hi;
+    safe.limiter = hi_w.limiter;
     safe.fault = hi_w.fault;
+    safe.seal = hi_w.seal;
+    safe.what = hi_w.what();
     safe.date = hi_w.date;
     safe.at = hi_w.at;
   }

@@ -81,6 +81,17 @@ struct FaultSpec {
   double friction_deg = 30.0;
 };
 
+// [[seal]]: a material whose elements are checked as a seal (caprock integrity, docs/caprock.md):
+// the tensile margin against its fracture pressure and a Mohr-Coulomb shear margin with the rock's
+// own strength. SI inside.
+struct SealSpec {
+  std::string material;              // a [[material]] name
+  std::string where;                 // file:line of the entry
+  double cohesion_Pa = 0.0;          // Mohr-Coulomb cohesion of the intact rock (>= 0)
+  double friction_deg = 30.0;        // its friction angle, (0, 90)
+  double tensile_strength_Pa = 0.0;  // T0: fracture pressure = S3 + T0 (>= 0)
+};
+
 // [seismicity] and its per-fault overrides [seismicity.fault.<name>] (docs/seismicity.md): the
 // rate-and-state seismicity parameters, SI inside. A value an override does not give is the
 // section's; the section gives A_sigma, the stressing rate, the background rate and M_c.
@@ -116,6 +127,7 @@ struct CaseFile {
   std::vector<std::string> free_boundaries;    // traction-free (stated for clarity; the default)
   std::vector<TractionSpec> tractions;         // [[boundary_traction]], on groups in none of the lists above
   std::vector<FaultSpec> faults;
+  std::vector<SealSpec> seals;                 // [[seal]]
   // Solver settings (docs/case-file.md).
   double newton_tolerance = 1e-8;
   // What newton_tolerance is relative to: "step" (the step's load increment, ||r_0||) or

@@ -46,6 +46,10 @@ struct RunSettings {
   // (a monthly InSAR window, the storage years of a seismicity forecast).
   std::vector<std::pair<double, double>> every_date_in;
   FaultSettings faults;
+  // Caprock integrity of the [[seal]] materials (docs/caprock.md): fields over the seal elements at
+  // the output dates (HDF5 + XDMF) and the worst element of each seal at every step (CSV).
+  std::optional<std::string> caprock_fields;
+  std::optional<std::string> caprock_table;
   std::string command_line;               // recorded in the CSV headers
   // Messages (level 0 info, 1 detail, -1 warning) and progress; called on rank 0 only.
   std::function<void(int, const std::string&)> log;
