@@ -57,7 +57,7 @@ class Pauser(threading.Thread):
             except ProcessLookupError:
                 return
             self.pauses += 1
-            time.sleep(self.rng.uniform(0.05, 1.0))
+            time.sleep(self.rng.uniform(0.05, 0.4))
             try:
                 os.killpg(self.pgid, signal.SIGCONT)
             except ProcessLookupError:
