@@ -373,3 +373,43 @@ TEST(Report, NumericOptionsMustBeFiniteAndInRange) {
   for (const auto& e : fs::directory_iterator(s.dir)) EXPECT_NE(e.path().filename().string().rfind(".x.tmp", 0), 0u);
   if (!HasFailure() && !std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
 }
+
+// Issue 42: the safety answer as headlines — the safe scale, what limits it, the maximum safe
+// pressure per pool from its schedule scaled about the reference (here the schedules' first date),
+// and the seals' smallest margins.
+TEST(Report, SafetyHeadlinesFromTheSearchAndTheCaprockTables) {
+  const Synthetic s = make_synthetic("report-safety");
+  const std::string d = s.dir.string() + "/";
+  test::spit(s.dir / "scenario.csv",
+             "# ugs-solve safe-scale search\n"
+             "scale,max_chi,critical,fault,date,x_m,y_m,z_m,dp_max_MPa,dp_min_MPa,limiter,seal,min_tensile_margin_MPa,"
+             "min_shear_margin_MPa,note\n"
+             "1,0.4,0,,,0,0,0,1,0,,,3.1,4.2,\n2,0.6,0,,,0,0,0,2,0,,,1.2,3.9,\n"
+             "4,0.9,1,,2015-11-01,1,2,3,4,0,caprock tensile failure,caprock,-2.5,3.1,\n"
+             "3,0.8,1,,2015-11-01,1,2,3,3,0,caprock tensile failure,caprock,-0.4,3.5,\n2.5,0.7,0,,,0,0,0,2.5,0,,,0.3,3.7,\n");
+  test::spit(s.dir / "caprock.csv",
+             "date,seal,min_tensile_margin_MPa,tensile_x_m,tensile_y_m,tensile_z_m,pore_pressure_MPa,min_shear_margin_MPa,"
+             "shear_x_m,shear_y_m,shear_z_m\n"
+             "2015-05-01,caprock,4.5,0,0,0,9.1,6.0,0,0,0\n2015-11-01,caprock,1.25,0,0,0,12.9,5.5,0,0,0\n");
+  const auto r = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+                           "case.toml --scenario " + d + "scenario.csv --caprock " + d + "caprock.csv -o " + d +
+                           "rep --width 800 --height 600");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = test::slurp(s.dir / "rep" / "summary.md");
+  EXPECT_NE(md.find("| safety | maximum safe scale of the swing | 2.5 (critical at 3) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| safety | what limits it | seal caprock: caprock tensile failure on 2015-11-01 |"), std::string::npos) << md;
+  // Pool C: 0.70 p0 at the reference, its peak 0.85 p0: 0.70 p0 + 2.5 x 0.15 p0, p0 = 15.2055 MPa.
+  EXPECT_NE(md.find(fmt::format("| safety | maximum safe pressure, Pool C | {:.2f} MPa (+{:.2f} MPa over its initial {:.2f} MPa) |",
+                                (0.70 + 2.5 * 0.15) * 15.2055, 2.5 * 0.15 * 15.2055, 0.70 * 15.2055)),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find(fmt::format("| safety | maximum safe pressure, Pool A | {:.2f} MPa", (0.80 + 2.5 * 0.02) * 15.2055)),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("smallest tensile margin (fracture pressure - pore pressure) | 1.25 MPa (seal caprock, 2015-11-01, pore "
+                    "pressure 12.90 MPa) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("smallest Mohr-Coulomb shear margin | 5.50 MPa (seal caprock, 2015-11-01) |"), std::string::npos) << md;
+  if (!std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
+}

@@ -131,6 +131,13 @@ int main(int argc, char** argv) {
                  "ugs-seismicity's per fault and date table (its _windows.csv and _pairs.csv beside it): R/r series, event "
                  "density map, expected events and P(M >= m) as headlines");
   app.add_option("--seismicity-window", o.seismicity_window, "START/END of the event density map (default: the first window)");
+  app.add_option("--scenario", o.scenario,
+                 "ugs-solve's safe-scale table (<output>_scenario.csv): the maximum safe scale, what limits it and the "
+                 "maximum safe pressure per pool (MPa) as headlines")
+      ->check(CLI::ExistingFile);
+  app.add_option("--caprock", o.caprock,
+                 "ugs-solve's caprock table (<output>_caprock.csv): the seals' smallest tensile and shear margins as headlines")
+      ->check(CLI::ExistingFile);
   app.add_option("--discussion", o.discussion,
                  "Markdown file: why this case's numbers differ from the thesis' (a section of the summary)")
       ->check(CLI::ExistingFile);
@@ -237,6 +244,7 @@ int main(int argc, char** argv) {
     build_calibration(c);
     build_ensemble(c);
     build_seismicity(c);
+    build_safety(c);
     build_comparison(c);
     if (c.figures.empty()) throw InputError(o.results, "nothing to draw: " + (c.notes.empty() ? std::string("?") : c.notes.front()));
 

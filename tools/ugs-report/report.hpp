@@ -41,6 +41,8 @@ struct Options {
   std::string ensemble;                  // ugs-ensemble output folder
   std::string seismicity;                // ugs-seismicity's per fault and date table (its _windows and _pairs beside it)
   std::string seismicity_window;         // START/END of the event density map (default: the first window)
+  std::string scenario;                  // ugs-solve's safe-scale table (<output>_scenario.csv)
+  std::string caprock;                   // ugs-solve's caprock table (<output>_caprock.csv)
   std::vector<std::string> compare;      // LABEL=FILE: other runs on the same mesh
   std::string compare_since;             // changes from this date (default: the first shared date)
   std::string discussion;                // Markdown paragraphs comparing the run with the thesis
@@ -121,6 +123,7 @@ void build_faults(Context& c);
 void build_calibration(Context& c);
 void build_ensemble(Context& c);
 void build_seismicity(Context& c);
+void build_safety(Context& c);
 void build_comparison(Context& c);
 // Writes summary.md and summary.html in the output folder.
 void write_summary(const Context& c);

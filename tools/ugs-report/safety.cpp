@@ -1,0 +1,129 @@
+// The safety answer as headlines (docs/caprock.md, docs/fault-mechanics.md "Maximum safe storage
+// pressure"): from ugs-solve's safe-scale table, the maximum safe scale of the swing, what limits it
+// (a fault at chi = 1, caprock tensile or shear failure) and, per pool, the largest pressure of its
+// schedule at that scale in MPa with its excess over the pool's initial pressure; from the caprock
+// table, the seals' smallest tensile and shear margins over the run and when.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "report.hpp"
+#include "ugs/formats/csv.hpp"
+
+namespace ugs::report {
+
+namespace {
+
+// A pool's pressure schedule in MPa: dates and values (p_norm times the reference pressure).
+struct Schedule {
+  std::vector<std::int64_t> t;
+  std::vector<double> p;
+  double at(std::int64_t when) const {
+    if (when <= t.front()) return p.front();
+    if (when >= t.back()) return p.back();
+    const auto k = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), when) - t.begin());
+    const double w = static_cast<double>(when - t[k - 1]) / static_cast<double>(t[k] - t[k - 1]);
+    return p[k - 1] + w * (p[k] - p[k - 1]);
+  }
+};
+
+Schedule schedule_MPa(const PoolSpec& pool) {
+  const CsvTable t = CsvTable::read(pool.schedule);
+  const auto cd = t.column("date"), cv = t.column(pool.column);
+  const bool normalized = pool.column == "p_norm";
+  if (normalized && !pool.reference_pressure_Pa)
+    throw InputError(pool.where, fmt::format("pool '{}': p_norm schedule without reference_pressure_MPa", pool.name));
+  Schedule s;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    s.t.push_back(t.date(r, cd));
+    s.p.push_back(normalized ? t.number(r, cv) * *pool.reference_pressure_Pa * 1e-6 : t.number(r, cv));
+  }
+  if (s.t.empty()) throw InputError(pool.schedule, "has no rows");
+  return s;
+}
+
+struct Search {
+  bool found = false;
+  double safe = 0, critical = std::numeric_limits<double>::infinity();
+  std::string limiter, who, date;
+};
+
+Search read_search(const std::string& path) {
+  const CsvTable t = CsvTable::read(path);
+  if (t.rows() == 0) throw InputError(path, "has no trial (expected ugs-solve's --find-safe-scale table)");
+  const auto cs = t.column("scale"), cc = t.column("critical"), cf = t.column("fault"), cd = t.column("date");
+  const auto cl = t.find_column("limiter"), cseal = t.find_column("seal");
+  Search s;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    if (t.integer(r, cc) == 0 || t.number(r, cs) >= s.critical) continue;
+    s.found = true;
+    s.critical = t.number(r, cs);
+    s.limiter = cl ? std::string(t.text(r, *cl)) : std::string("fault chi = 1");  // tables from before the seals
+    if (s.limiter.empty()) s.limiter = "Newton failed";
+    s.who = s.limiter == "fault chi = 1" || !cseal ? std::string(t.text(r, cf)) : std::string(t.text(r, *cseal));
+    s.date = std::string(t.text(r, cd));
+  }
+  for (std::size_t r = 0; r < t.rows(); ++r)
+    if (t.integer(r, cc) == 0 && t.number(r, cs) < s.critical) s.safe = std::max(s.safe, t.number(r, cs));
+  return s;
+}
+
+void search_headlines(Context& c) {
+  const Search s = read_search(c.opt.scenario);
+  const std::string group = "safety";
+  if (!s.found) {
+    c.headlines.push_back({group, "maximum safe scale of the swing", fmt::format("above {:.4g} (nothing fails up to it)", s.safe), ""});
+    return;
+  }
+  c.headlines.push_back({group, "maximum safe scale of the swing", fmt::format("{:.4g} (critical at {:.4g})", s.safe, s.critical), ""});
+  const std::string what = s.limiter == "fault chi = 1"    ? fmt::format("fault {} reaches chi = 1 on {}", s.who, s.date)
+                           : s.limiter == "Newton failed" ? fmt::format("the solver failed on {} (counted as critical)", s.date)
+                                                          : fmt::format("seal {}: {} on {}", s.who, s.limiter, s.date);
+  c.headlines.push_back({group, "what limits it", what, ""});
+  if (!c.cs) return;
+  // The scenario scales each pool's swing about its pressure at the reference date.
+  for (const PoolSpec& pool : c.cs->pools) {
+    const Schedule p = schedule_MPa(pool);
+    const std::int64_t ref = c.cs->scenario_reference_date.empty() ? p.t.front()
+                                                                   : parse_iso_date(c.cs->scenario_reference_date).value_or(p.t.front());
+    const double p_ref = p.at(ref);
+    double peak = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < p.t.size(); ++k)
+      if (p.t[k] > ref) peak = std::max(peak, p_ref + s.safe * (p.p[k] - p_ref));
+    if (!std::isfinite(peak)) continue;
+    c.headlines.push_back({group, fmt::format("maximum safe pressure, {}", pool.name),
+                           fmt::format("{:.2f} MPa ({:+.2f} MPa over its initial {:.2f} MPa)", peak, peak - p.p.front(), p.p.front()),
+                           ""});
+  }
+}
+
+void caprock_headlines(Context& c) {
+  const CsvTable t = CsvTable::read(c.opt.caprock);
+  const auto cd = t.column("date"), cs = t.column("seal"), ct = t.column("min_tensile_margin_MPa"), csh = t.column("min_shear_margin_MPa");
+  const auto cp = t.column("pore_pressure_MPa");
+  std::size_t wt = t.rows(), ws = t.rows();
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    if (wt == t.rows() || t.number(r, ct) < t.number(wt, ct)) wt = r;
+    if (ws == t.rows() || t.number(r, csh) < t.number(ws, csh)) ws = r;
+  }
+  if (wt == t.rows()) throw InputError(c.opt.caprock, "has no rows (expected ugs-solve's caprock table)");
+  c.headlines.push_back({"safety", "caprock: smallest tensile margin (fracture pressure - pore pressure)",
+                         fmt::format("{:.2f} MPa (seal {}, {}, pore pressure {:.2f} MPa){}", t.number(wt, ct), t.text(wt, cs),
+                                     t.text(wt, cd), t.number(wt, cp), t.number(wt, ct) <= 0 ? ": FAILS" : ""),
+                         ""});
+  c.headlines.push_back({"safety", "caprock: smallest Mohr-Coulomb shear margin",
+                         fmt::format("{:.2f} MPa (seal {}, {}){}", t.number(ws, csh), t.text(ws, cs), t.text(ws, cd),
+                                     t.number(ws, csh) <= 0 ? ": FAILS" : ""),
+                         ""});
+}
+
+}  // namespace
+
+void build_safety(Context& c) {
+  if (!c.opt.scenario.empty()) search_headlines(c);
+  if (!c.opt.caprock.empty()) caprock_headlines(c);
+}
+
+}  // namespace ugs::report
