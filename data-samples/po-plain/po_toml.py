@@ -166,6 +166,14 @@ def case_toml(variant, seed):
         L.append("cohesion_MPa = 0.0")
         L.append("friction_deg = 30.0")
         L.append("")
+    # Pool C's seal: the interlayer, 22 m of shale under Pool A (its base carries Pool C's pressure).
+    # Illustrative strength of a shale, not from lab tests; T0 = 0: a fracture reopens at S3.
+    L.append("[[seal]]   # caprock integrity (docs/caprock.md): the interlayer seals Pool C")
+    L.append('material = "interlayer"')
+    L.append("cohesion_MPa = 3.0            # illustrative shale strength, not from lab tests")
+    L.append("friction_deg = 25.0")
+    L.append("tensile_strength_MPa = 0.0    # a fracture reopens at S3")
+    L.append("")
     L.append("[scenario]   # ugs-solve --scale / --find-safe-scale on the faulted model")
     L.append('reference_date = "2025-04-01"   # the swing scaled: the forecast storage from its lowest pressure (thesis 4.3.3)')
     L.append("max_scale = 4.0")

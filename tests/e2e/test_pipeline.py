@@ -188,6 +188,47 @@ def check_forecast(out, case, rows, summary):
     check(len(got) == 1 and abs(got[0] - n2) <= 5e-3 * n2 and q in summary, f"headline and summary '{q}' = {n2:.3g}")
 
 
+def check_caprock(out, case, rows):
+    """The seal check of the faulted run (docs/caprock.md): at 1950-01-01 (no pressure change, u = 0) each
+    seal element's margins are the geostatic closed form of [initial_stress] (Biot 1, k0 < 1: S3 = S_h),
+    with the element's pore pressure the highest of its nodes'; the report's safety headlines."""
+    import h5py
+    seals = case["seal"]
+    table = data_rows(os.path.join(out, "faulted_caprock.csv"))
+    first = [r for r in table if r["date"] == table[0]["date"]]
+    check(table[0]["date"] == "1950-01-01" and sorted(r["seal"] for r in first) == sorted(s["material"] for s in seals),
+          f"faulted_caprock.csv: one row per seal ({len(first)}) on the first date {table[0]['date']}")
+    st = case["initial_stress"]
+    zs, gl, gh, k0 = st["surface_elevation_m"], st["lithostatic_gradient_MPa_per_m"], st["hydrostatic_gradient_MPa_per_m"], st["k0"]
+    with h5py.File(os.path.join(out, "faulted_caprock.h5"), "r") as f:
+        x = f["mesh/coordinates"][:]
+        tets = f["mesh/tetrahedra"][:]
+        mat = f["mesh/material"][:]
+    seal = seals[0]
+    c, phi = seal["cohesion_MPa"], math.radians(seal["friction_deg"])
+    tmin = smin = math.inf
+    for t in tets:
+        z = [x[n][2] for n in t]
+        dc, dn = zs - sum(z) / 4, zs - min(z)
+        sv, sh, p = gl * dc, k0 * (gl - gh) * dc + gh * dc, gh * dn
+        s1, s3 = max(sv, sh) - p, min(sv, sh) - p
+        tmin = min(tmin, min(sv, sh) + seal["tensile_strength_MPa"] - p)
+        smin = min(smin, c * math.cos(phi) + 0.5 * (s1 + s3) * math.sin(phi) - 0.5 * (s1 - s3))
+    got_t, got_s = float(first[0]["min_tensile_margin_MPa"]), float(first[0]["min_shear_margin_MPa"])
+    check(len(seals) == 1 and len(set(mat)) == 1 and abs(got_t - tmin) <= 1e-3 and abs(got_s - smin) <= 1e-3,
+          f"geostatic seal margins {got_t:.4f} / {got_s:.4f} MPa = closed form {tmin:.4f} / {smin:.4f} MPa "
+          f"over {len(tets)} {seal['material']} elements")
+    safety = {r["quantity"]: r["value"] for r in rows if r["group"] == "safety"}
+    pools = [q for q in safety if q.startswith("maximum safe pressure, ")]
+    margins = [q for q in safety if q.startswith("caprock: smallest")]
+    # At the tiny scale local_2 slips in every cycle, before the reference date: no scale is safe, and
+    # then no pool has a safe pressure either.
+    none = safety.get("maximum safe scale of the swing", "").startswith("none")
+    check("what limits it" in safety and len(pools) == (0 if none else len(case["pool"])) and len(margins) == 2,
+          f"report: what limits the safe scale ({safety.get('what limits it', 'missing')}), the safe pressure of "
+          f"{len(pools)} pools, {len(margins)} caprock margins")
+
+
 def check_ensemble(build, out, summary, rows):
     """The small ensemble of the demo (ensemble.toml) and its rows in the report."""
     ens = os.path.join(out, "ensemble")
@@ -305,6 +346,7 @@ def main():
               f"{name} slips only at the pools' depth ({len(slip_z)} dates with slip, z in [{lo:.0f}, {hi:.0f}] m)")
 
     check_forecast(out, case, rows, summary)
+    check_caprock(out, case, rows)
     check_ensemble(build, out, summary, rows)
 
     with open(os.path.join(out, "calibration", "best.toml"), "rb") as fh:

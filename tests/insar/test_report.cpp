@@ -398,6 +398,9 @@ TEST(Report, SafetyHeadlinesFromTheSearchAndTheCaprockTables) {
   const std::string md = test::slurp(s.dir / "rep" / "summary.md");
   EXPECT_NE(md.find("| safety | maximum safe scale of the swing | 2.5 (critical at 3) |"), std::string::npos) << md;
   EXPECT_NE(md.find("| safety | what limits it | seal caprock: caprock tensile failure on 2015-11-01 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| safety | smallest seal margins at the maximum safe scale | tensile 0.30 MPa, shear 3.70 MPa |"),
+            std::string::npos)
+      << md;
   // Pool C: 0.70 p0 at the reference, its peak 0.85 p0: 0.70 p0 + 2.5 x 0.15 p0, p0 = 15.2055 MPa.
   EXPECT_NE(md.find(fmt::format("| safety | maximum safe pressure, Pool C | {:.2f} MPa (+{:.2f} MPa over its initial {:.2f} MPa) |",
                                 (0.70 + 2.5 * 0.15) * 15.2055, 2.5 * 0.15 * 15.2055, 0.70 * 15.2055)),

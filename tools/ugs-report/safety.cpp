@@ -45,17 +45,20 @@ Schedule schedule_MPa(const PoolSpec& pool) {
 }
 
 struct Search {
+  bool tried = true;  // false: the table has no trial (an older ugs-solve, something failed before the reference date)
   bool found = false;
+  bool any_safe = false;  // some trial below the critical scale was safe
   double safe = 0, critical = std::numeric_limits<double>::infinity();
   std::string limiter, who, date;
+  std::string seal_margins;  // "tensile 4.37 MPa, shear 3.96 MPa" at the safe scale (tables with seals)
 };
 
 Search read_search(const std::string& path) {
   const CsvTable t = CsvTable::read(path);
-  if (t.rows() == 0) throw InputError(path, "has no trial (expected ugs-solve's --find-safe-scale table)");
   const auto cs = t.column("scale"), cc = t.column("critical"), cf = t.column("fault"), cd = t.column("date");
   const auto cl = t.find_column("limiter"), cseal = t.find_column("seal");
   Search s;
+  s.tried = t.rows() > 0;
   for (std::size_t r = 0; r < t.rows(); ++r) {
     if (t.integer(r, cc) == 0 || t.number(r, cs) >= s.critical) continue;
     s.found = true;
@@ -64,25 +67,43 @@ Search read_search(const std::string& path) {
     if (s.limiter.empty()) s.limiter = "Newton failed";
     s.who = s.limiter == "fault chi = 1" || !cseal ? std::string(t.text(r, cf)) : std::string(t.text(r, *cseal));
     s.date = std::string(t.text(r, cd));
+    const auto cn = t.find_column("note");
+    if (cn && t.text(r, *cn).find("before or at the reference date") != std::string_view::npos)
+      s.date += " (before or at the reference date)";
   }
+  std::size_t safe_row = t.rows();
   for (std::size_t r = 0; r < t.rows(); ++r)
-    if (t.integer(r, cc) == 0 && t.number(r, cs) < s.critical) s.safe = std::max(s.safe, t.number(r, cs));
+    if (t.integer(r, cc) == 0 && t.number(r, cs) < s.critical && (safe_row == t.rows() || t.number(r, cs) > s.safe))
+      s.safe = t.number(r, cs), safe_row = r, s.any_safe = true;
+  const auto ct = t.find_column("min_tensile_margin_MPa"), csh = t.find_column("min_shear_margin_MPa");
+  if (safe_row < t.rows() && ct && csh && !t.text(safe_row, *ct).empty())
+    s.seal_margins = fmt::format("tensile {:.2f} MPa, shear {:.2f} MPa", t.number(safe_row, *ct), t.number(safe_row, *csh));
   return s;
 }
 
 void search_headlines(Context& c) {
   const Search s = read_search(c.opt.scenario);
   const std::string group = "safety";
+  if (!s.tried) {  // ugs-solve writes no trial when a fault or a seal fails before the reference date
+    c.headlines.push_back({group, "maximum safe scale of the swing",
+                           "none: a fault patch reaches chi = 1 or a seal fails before or at the reference date", ""});
+    return;
+  }
   if (!s.found) {
     c.headlines.push_back({group, "maximum safe scale of the swing", fmt::format("above {:.4g} (nothing fails up to it)", s.safe), ""});
     return;
   }
-  c.headlines.push_back({group, "maximum safe scale of the swing", fmt::format("{:.4g} (critical at {:.4g})", s.safe, s.critical), ""});
+  c.headlines.push_back({group, "maximum safe scale of the swing",
+                         s.any_safe ? fmt::format("{:.4g} (critical at {:.4g})", s.safe, s.critical)
+                                    : fmt::format("none (critical at {:.4g}, the smallest scale tried)", s.critical),
+                         ""});
   const std::string what = s.limiter == "fault chi = 1"    ? fmt::format("fault {} reaches chi = 1 on {}", s.who, s.date)
                            : s.limiter == "Newton failed" ? fmt::format("the solver failed on {} (counted as critical)", s.date)
                                                           : fmt::format("seal {}: {} on {}", s.who, s.limiter, s.date);
   c.headlines.push_back({group, "what limits it", what, ""});
-  if (!c.cs) return;
+  if (!s.seal_margins.empty())
+    c.headlines.push_back({group, "smallest seal margins at the maximum safe scale", s.seal_margins, ""});
+  if (!c.cs || !s.any_safe) return;
   // The scenario scales each pool's swing about its pressure at the reference date.
   for (const PoolSpec& pool : c.cs->pools) {
     const Schedule p = schedule_MPa(pool);

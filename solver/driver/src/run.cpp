@@ -111,6 +111,7 @@ private:
   std::size_t first_after_ = 0;  // first step after the reference date
   std::vector<mech::CellField> cell_fields_;  // the cell fields of an output date, in writing order
   Watch base_;
+  Watch before_;  // the steps up to the reference date (rank 0): what failed there, if anything
   RunSummary sum_;
   // Warnings and notes about the inputs wait until every input has been checked and the outputs
   // are open: a run that stops on bad input prints its error lines and nothing else.
@@ -429,8 +430,7 @@ private:
       mech::collective(comm_, [&] {
         if (rank_ != 0) return;
         Root& R = *root_;
-        Watch before_reference;
-        Watch& watch = time > set_.ref_time ? base_ : before_reference;
+        Watch& watch = time > set_.ref_time ? base_ : before_;
         if (faulted()) {
           const contact::FaultFields ff = contact::derive_fault_fields(R.fm, pr);
           watch.see(R.fm, ff, date);
@@ -443,7 +443,7 @@ private:
                               cap.shear.margin_Pa * 1e-6);
           if (R.caprock_out) R.caprock_out->add(date, time, cap, steps_.output[i]);
         }
-        critical_before_ = critical_before_ || before_reference.critical;
+        critical_before_ = before_.critical;
         R.out->write_step(date, time, u, steps_.output[i], *R.history);
       });
       if (steps_.output[i])
@@ -519,10 +519,11 @@ private:
       else table->text("").text("");
       table->text(note).end_row();
     });
-    log(0, fmt::format("scale {:.4g}: {}{}", s,
-                       faulted() ? fmt::format("max chi {:.4f}", w.max_chi)
-                                 : fmt::format("seal margins {:.3f} MPa (tensile), {:.3f} MPa (shear)",
-                                               w.min_tensile_margin * 1e-6, w.min_shear_margin * 1e-6),
+    std::string seen = faulted() ? fmt::format("max chi {:.4f}", w.max_chi) : "";
+    if (caprock())
+      seen += fmt::format("{}smallest seal margins {:.3f} MPa (tensile), {:.3f} MPa (shear)", seen.empty() ? "" : ", ",
+                          w.min_tensile_margin * 1e-6, w.min_shear_margin * 1e-6);
+    log(0, fmt::format("scale {:.4g}: {}{}", s, seen,
                        w.critical ? fmt::format(" — critical: {} on {}", w.what().empty() ? "Newton failed" : w.what(), w.date)
                                   : ""));
     return w;
@@ -549,7 +550,20 @@ private:
     });
     if (critical_before_) {
       sum_.critical_before = true;
-      log(-1, "a fault patch reaches chi = 1 or a seal fails before or at the reference date: no scale of the later swing is safe");
+      std::string what;
+      mech::collective(comm_, [&] {
+        if (rank_ != 0) return;
+        const Watch& w = before_;
+        what = fmt::format("{} on {}", w.what(), w.date);
+        // One row, the base run's: critical before any scaling.
+        table->number(set_.scale, 6).number(w.max_chi, 6).integer(1).text(w.fault).text(w.date);
+        table->number(w.at[0], 2).number(w.at[1], 2).number(w.at[2], 2).number(0.0, 4).number(0.0, 4);
+        table->text(limiter_text(w.limiter)).text(w.seal);
+        if (caprock()) table->number(w.min_tensile_margin * 1e-6, 4).number(w.min_shear_margin * 1e-6, 4);
+        else table->text("").text("");
+        table->text("before or at the reference date: no scale of the later swing is safe").end_row();
+      });
+      log(-1, fmt::format("{} (before or at the reference date): no scale of the later swing is safe", what));
     } else {
       const SafeScale safe = search_safe_scale(set_.max_scale, set_.scale_tolerance, [&](double s) { return trial(s, table.get()); });
       if (safe.found)
