@@ -562,6 +562,64 @@ SeismicityValues read_seismicity_values(const TomlTable& t, const Collect& ok) {
   return v;
 }
 
+void read_report(const TomlTable& root, CaseFile& c, const Collect& ok) {
+  std::optional<TomlTable> s;
+  ok([&] { s = root.table_opt("report"); });
+  if (!s) return;
+  s->reject_unknown({"stress_pool", "phase", "chi_max", "uplift_max_mm", "settlement_max_mm", "tensile_margin_min_MPa",
+                     "shear_margin_min_MPa"},
+                    ok.errors);
+  ReportSpec r;
+  r.where = s->where();
+  ok([&] {
+    r.stress_pool = s->has("stress_pool") ? s->string("stress_pool") : "";
+    if (r.stress_pool.empty() || c.pools.empty()) return;
+    for (const auto& p : c.pools)
+      if (p.name == r.stress_pool) return;
+    throw s->error("stress_pool", fmt::format("'{}' is not a [[pool]] of the case", r.stress_pool));
+  });
+  auto limit = [&](const char* key, std::optional<double>& v, double lo, bool lo_open, double hi, const char* what) {
+    ok([&] {
+      if (!s->has(key)) return;
+      const double x = s->number(key);
+      if (!std::isfinite(x) || (lo_open ? x <= lo : x < lo) || x > hi)
+        throw s->error(key, fmt::format("{} is outside {}{}, {}] ({})", x, lo_open ? "(" : "[", lo, hi, what));
+      v = x;
+    });
+  };
+  const double inf = std::numeric_limits<double>::max();
+  limit("chi_max", r.chi_max, 0, true, 1, "a fault safety factor");
+  limit("uplift_max_mm", r.uplift_max_mm, 0, true, inf, "mm of uplift over a phase");
+  limit("settlement_max_mm", r.settlement_max_mm, 0, true, inf, "mm of settlement over a phase");
+  limit("tensile_margin_min_MPa", r.tensile_margin_min_MPa, 0, false, inf, "MPa between the fracture and the pore pressure");
+  limit("shear_margin_min_MPa", r.shear_margin_min_MPa, 0, false, inf, "MPa of shear stress below the Mohr-Coulomb line");
+  std::vector<TomlTable> phases;
+  ok([&] {
+    if (s->has("phase")) phases = s->tables("phase");
+  });
+  std::set<std::string> names;
+  for (const auto& t : phases) {
+    t.reject_unknown({"name", "start", "end"}, ok.errors);
+    ReportPhaseSpec p;
+    ok([&] {
+      p.name = t.string("name");
+      if (p.name.empty()) throw t.error("name", "is empty");
+      if (!names.insert(p.name).second) throw t.error("name", fmt::format("phase '{}' given twice", p.name));
+    });
+    const bool dates = ok([&] {
+      p.start = t.string("start");
+      if (!parse_iso_date(p.start)) throw t.error("start", fmt::format("'{}' is not an ISO 8601 date", p.start));
+    }) && ok([&] {
+      p.end = t.string("end");
+      if (!parse_iso_date(p.end)) throw t.error("end", fmt::format("'{}' is not an ISO 8601 date", p.end));
+    });
+    if (dates && *parse_iso_date(p.start) >= *parse_iso_date(p.end))
+      ok([&] { throw t.error("end", fmt::format("{} is not after the start {}", p.end, p.start)); });
+    r.phases.push_back(std::move(p));
+  }
+  c.report = std::move(r);
+}
+
 void read_seismicity(const TomlTable& root, CaseFile& c, const Collect& ok) {
   std::optional<TomlTable> s;
   ok([&] { s = root.table_opt("seismicity"); });
@@ -627,7 +685,7 @@ CaseFile read_case_file(const std::string& path, ErrorList& errors) {
   const TomlTable root = TomlTable::parse_file(path);  // (a file that cannot be read or parsed stops here)
   const Collect ok{errors};
   root.reject_unknown({"crs", "model", "water", "initial_stress", "material", "pool", "boundary", "boundary_traction", "fault",
-                       "solver", "output", "scenario", "seismicity", "seal"},
+                       "solver", "output", "scenario", "seismicity", "seal", "report"},
                       errors);
   CaseFile c;
   c.path = path;
@@ -641,6 +699,7 @@ CaseFile read_case_file(const std::string& path, ErrorList& errors) {
   read_scenario(root, c, ok);
   read_output(root, c, ok);
   read_seismicity(root, c, ok);
+  read_report(root, c, ok);
   return c;
 }
 

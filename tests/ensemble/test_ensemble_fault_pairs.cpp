@@ -144,7 +144,7 @@ TEST(EnsembleFaultPairs, ExceedancePerPairMismatchAndReportMap) {
   }
 
   // 3. ugs-report draws the maps from the first folder, and its CSV holds collect's values.
-  const auto rep = test::run(test::tool("ugs-report") + " --results " + (dir / "template.h5").string() + " --mesh " +
+  const auto rep = test::run(test::tool("ugs-report") + " --thesis --results " + (dir / "template.h5").string() + " --mesh " +
                              (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() + " --ensemble " +
                              (dir / "out").string() + " --keep-work -o " + (dir / "report").string());
   ASSERT_EQ(rep.exit_code, 0) << rep.err;
@@ -183,7 +183,7 @@ TEST(EnsembleFaultPairs, ExceedancePerPairMismatchAndReportMap) {
              "p_event.all.forecast,4,0.9,0.75,0.875,0.9375,0.5,1\n"
              "p_event_M2.F1.forecast,4,0.1,0.05,0.1,0.2,0.01,0.3\n"
              "p_event_M2.all.forecast,4,0.5,0.25,0.5,0.75,0.125,0.875\n");
-  const auto rs3 = test::run(test::tool("ugs-report") + " --results " + (dir / "template.h5").string() + " --mesh " +
+  const auto rs3 = test::run(test::tool("ugs-report") + " --thesis --results " + (dir / "template.h5").string() + " --mesh " +
                              (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() + " --ensemble " +
                              (dir / "seismic").string() + " -o " + (dir / "report_seismic").string());
   ASSERT_EQ(rs3.exit_code, 0) << rs3.err;
@@ -208,7 +208,7 @@ TEST(EnsembleFaultPairs, ExceedancePerPairMismatchAndReportMap) {
     for (std::size_t at = 0; (at = text.find("\nF2,", at)) != std::string::npos;) text.replace(at, 4, "\nf1,");
     test::spit(dir / "cased" / f, text);
   }
-  const auto rc = test::run(test::tool("ugs-report") + " --results " + (dir / "template.h5").string() + " --mesh " +
+  const auto rc = test::run(test::tool("ugs-report") + " --thesis --results " + (dir / "template.h5").string() + " --mesh " +
                             (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() + " --ensemble " +
                             (dir / "cased").string() + " --keep-work -o " + (dir / "report_cased").string());
   ASSERT_EQ(rc.exit_code, 0) << rc.err;

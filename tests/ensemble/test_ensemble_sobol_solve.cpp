@@ -111,7 +111,7 @@ TEST(EnsembleSobolSolve, UnusedParameterGetsZeroAndReloadingCompressibilityDecid
   }
 
   // ugs-report's tornado chart from the Sobol' folder; the CSV it draws = sobol.csv's rows.
-  const auto rep = test::run(test::tool("ugs-report") + " --results " + (dir / "truth.h5").string() + " --mesh " +
+  const auto rep = test::run(test::tool("ugs-report") + " --thesis --results " + (dir / "truth.h5").string() + " --mesh " +
                              (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() +
                              " --phase storage=2013-05-01/2013-11-01 --ensemble " + (dir / "out").string() + " --keep-work -o " +
                              (dir / "report").string());

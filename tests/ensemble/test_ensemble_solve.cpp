@@ -74,7 +74,7 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   }
 
   // The report's ensemble pictures from that folder (tornado of morris.csv, fan charts of ps_series.csv).
-  const auto rep = test::run(test::tool("ugs-report") + " --results " + (dir / "truth.h5").string() + " --mesh " +
+  const auto rep = test::run(test::tool("ugs-report") + " --thesis --results " + (dir / "truth.h5").string() + " --mesh " +
                              (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() +
                              " --phase storage=2013-05-01/2013-11-01 --ensemble " + (dir / "out").string() + " -o " +
                              (dir / "report").string());

@@ -29,7 +29,7 @@ TEST(SolveTwin, CrOfPoolCRecoveredWithinPointThree) {
   // The report on the truth run, with the solver's own top-surface file beside it.
   test::spit(dir / "sections.geojson", R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},"features":[{"type":"Feature","properties":{"name":"A-A"},
 "geometry":{"type":"LineString","coordinates":[[677000,4952500],[686000,4952500]]}}]})");
-  const auto rep = test::run(test::tool("ugs-report") + " --results " + (dir / "truth.h5").string() + " --mesh " +
+  const auto rep = test::run(test::tool("ugs-report") + " --thesis --results " + (dir / "truth.h5").string() + " --mesh " +
                              (dir / "model.msh").string() + " --case " + (dir / "case.toml").string() + " --measured " +
                              (dir / "up.csv").string() + " --sections " + (dir / "sections.geojson").string() +
                              " --phase storage=2013-05-01/2013-11-01 --calibration " + (dir / "out").string() + " -o " +

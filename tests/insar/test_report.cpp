@@ -187,7 +187,7 @@ Image open_raster(const fs::path& p) {
 
 std::string report_command(const Synthetic& s, const std::string& out, const std::string& extra = "") {
   const std::string d = s.dir.string() + "/";
-  return test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d + "case.toml" +
+  return test::tool("ugs-report") + " --thesis --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d + "case.toml" +
          " --measured " + d + "up.csv --trace " + d + "trace.geojson --sections " + d + "sections.geojson --faults " + d +
          "faults.h5 -o " + d + out + " " + extra;
 }
@@ -254,7 +254,7 @@ TEST(Report, PicturesGeoTiffsAndHeadlineNumbers) {
 TEST(Report, WithoutFaultResultsTheChiPicturesAreSkippedWithANote) {
   const Synthetic s = make_synthetic("report-nofault");
   const std::string d = s.dir.string() + "/";
-  const auto r = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+  const auto r = test::run(test::tool("ugs-report") + " --thesis --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
                            "case.toml --phase injection=2015-05-01/2015-11-01 -o " + d + "rep --width 800 --height 600");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("no fault results"), std::string::npos) << r.err;
@@ -272,7 +272,7 @@ TEST(Report, BadInputsExitTwoWithOneLine) {
   auto one_line_error = [](const test::RunResult& r) {
     return r.exit_code == 2 && r.err.rfind("ugs-report: error: ", 0) == 0 && r.err.find('\n') == r.err.size() - 1;
   };
-  const std::string base = test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d + "case.toml";
+  const std::string base = test::tool("ugs-report") + " --thesis --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d + "case.toml";
   auto r = test::run(base + " --phase storage=2015-11-01/2015-05-01 -o " + d + "x");
   EXPECT_TRUE(one_line_error(r)) << r.err;
   r = test::run(base + " --phase storage=2030-05-01/2030-11-01 -o " + d + "x");
@@ -305,14 +305,14 @@ TEST(Report, OutOfRangeIndicesAndFailingPlotsLeaveNothing) {
     return r.exit_code == code && r.err.rfind("ugs-report: error: ", 0) == 0 && r.err.find('\n') == r.err.size() - 1 &&
            r.err.find(needle) != std::string::npos;
   };
-  const std::string base = test::tool("ugs-report") + " --mesh " + d + "model.msh --case " + d + "case.toml";
+  const std::string base = test::tool("ugs-report") + " --thesis --mesh " + d + "model.msh --case " + d + "case.toml";
   fs::copy_file(s.dir / "solve.h5", s.dir / "bad_tet.h5");
   test::h5_poke<std::uint32_t>(d + "bad_tet.h5", "/mesh/tetrahedra", 5 * 4 + 1, 4294967295u);
   auto r = test::run(base + " --results " + d + "bad_tet.h5 -o " + d + "x");
   EXPECT_TRUE(one_line(r, 2, "bad_tet.h5: /mesh/tetrahedra: cell 5 has node index 4294967295 (expected below the")) << r.err;
   EXPECT_EQ(no_leftovers(), "");
   // The same file without --mesh (top surface from the results' own cells): the same message.
-  r = test::run(test::tool("ugs-report") + " --results " + d + "bad_tet.h5 -o " + d + "x");
+  r = test::run(test::tool("ugs-report") + " --thesis --results " + d + "bad_tet.h5 -o " + d + "x");
   EXPECT_TRUE(one_line(r, 2, "bad_tet.h5: /mesh/tetrahedra: cell 5 has node index 4294967295")) << r.err;
   fs::copy_file(s.dir / "faults.h5", s.dir / "bad_faults.h5");
   test::h5_poke<std::uint32_t>(d + "bad_faults.h5", "/mesh/triangles", 2 * 3, 4294967295u);
@@ -338,7 +338,7 @@ TEST(Report, EveryPsPointOffTheModelIsRefused) {
   const Synthetic s = make_synthetic("report-off");
   const std::string d = s.dir.string() + "/";
   test::spit(s.dir / "far.csv", "pid,x,y,20150601,20150701\nF1,600000,4900000,0,1\nF2,600500,4900000,0,2\n");
-  const auto r = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+  const auto r = test::run(test::tool("ugs-report") + " --thesis --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
                            "case.toml --measured " + d + "far.csv -o " + d + "x");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err.rfind("ugs-report: error: " + d + "far.csv: none of the 2 PS points lies on the model's top surface", 0), 0u)
@@ -354,7 +354,7 @@ TEST(Report, EveryPsPointOffTheModelIsRefused) {
 TEST(Report, NumericOptionsMustBeFiniteAndInRange) {
   const Synthetic s = make_synthetic("report-numbers");
   const std::string d = s.dir.string() + "/";
-  const std::string base = test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+  const std::string base = test::tool("ugs-report") + " --thesis --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
                            "case.toml -o " + d + "x ";
   auto one_line = [](const test::RunResult& r, const std::string& needle) {
     return r.exit_code == 2 && r.err.rfind("ugs-report: error: " + needle, 0) == 0 && r.err.find('\n') == r.err.size() - 1;
@@ -391,7 +391,7 @@ TEST(Report, SafetyHeadlinesFromTheSearchAndTheCaprockTables) {
              "date,seal,min_tensile_margin_MPa,tensile_x_m,tensile_y_m,tensile_z_m,pore_pressure_MPa,min_shear_margin_MPa,"
              "shear_x_m,shear_y_m,shear_z_m\n"
              "2015-05-01,caprock,4.5,0,0,0,9.1,6.0,0,0,0\n2015-11-01,caprock,1.25,0,0,0,12.9,5.5,0,0,0\n");
-  const auto r = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+  const auto r = test::run(test::tool("ugs-report") + " --thesis --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
                            "case.toml --scenario " + d + "scenario.csv --caprock " + d + "caprock.csv -o " + d +
                            "rep --width 800 --height 600");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -414,5 +414,71 @@ TEST(Report, SafetyHeadlinesFromTheSearchAndTheCaprockTables) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("smallest Mohr-Coulomb shear margin | 5.50 MPa (seal caprock, 2015-11-01) |"), std::string::npos) << md;
+  if (!std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
+}
+
+// Issue 42: a report for the field — without --thesis the phases come from the case's [[report.phase]],
+// the thesis column is gone, and the case's acceptance thresholds are stated as pass / FAIL.
+TEST(Report, FieldReportTakesItsPhasesAndThresholdsFromTheCase) {
+  const Synthetic s = make_synthetic("report-field");
+  const std::string d = s.dir.string() + "/";
+  test::spit(s.dir / "case.toml", test::slurp(s.dir / "case.toml") + R"(
+[report]
+stress_pool = "Pool C"
+uplift_max_mm = 5
+settlement_max_mm = 1
+chi_max = 0.5
+tensile_margin_min_MPa = 2
+
+[[report.phase]]
+name = "injection"
+start = "2015-05-01"
+end = "2015-11-01"
+
+[[report.phase]]
+name = "withdrawal"
+start = "2015-11-01"
+end = "2016-05-01"
+)");
+  const auto r = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+                           "case.toml --faults " + d + "faults.h5 -o " + d + "rep --width 800 --height 600");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = test::slurp(s.dir / "rep" / "summary.md");
+  EXPECT_NE(md.find("- phases: injection 2015-05-01 to 2015-11-01; withdrawal 2015-11-01 to 2016-05-01"), std::string::npos) << md;
+  EXPECT_NE(md.find("| | quantity | this run |\n|---|---|---|\n"), std::string::npos) << md;
+  EXPECT_EQ(md.find("thesis"), std::string::npos) << md;
+  // The synthetic run: +3.8 mm over the injection, -1.6 mm over the withdrawal, chi at most 0.11 x 2800 / 3000.
+  EXPECT_NE(md.find("| acceptance | largest uplift over a phase <= 5 mm | 3.8 mm (injection 2015-05-01 to 2015-11-01 at x 681500, "
+                    "y 4952500): pass |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| acceptance | largest settlement over a phase <= 1 mm | 1.6 mm (withdrawal 2015-11-01 to 2016-05-01 at x "
+                    "681500, y 4952500): FAIL |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find(fmt::format("| acceptance | largest fault chi <= 0.5 | {:.3g} (fault north on", 0.11 * 2800.0 / 3000.0)),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| acceptance | smallest seal tensile margin >= 2 MPa | not checked: the inputs do not give it |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| acceptance | thresholds of the case | 1 of 3 FAIL |"), std::string::npos) << md;
+  // A phase outside the results, an unknown pool, a threshold out of range: one line each, exit 2.
+  const std::string good = test::slurp(s.dir / "case.toml");
+  const std::pair<std::string, std::string> bad[] = {
+      {"end = \"2016-05-01\"", "end = \"2040-05-01\""},
+      {"stress_pool = \"Pool C\"", "stress_pool = \"Pool Z\""},
+      {"chi_max = 0.5", "chi_max = 1.5"},
+  };
+  for (const auto& [from, to] : bad) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    test::spit(s.dir / "case.toml", text);
+    const auto b = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+                             "case.toml -o " + d + "bad");
+    EXPECT_EQ(b.exit_code, 2) << to << b.err;
+    EXPECT_EQ(std::count(b.err.begin(), b.err.end(), '\n'), 1) << b.err;
+    EXPECT_FALSE(fs::exists(s.dir / "bad"));
+  }
   if (!std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
 }

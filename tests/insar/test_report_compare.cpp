@@ -50,7 +50,7 @@ Case make_case(const std::string& tag) {
   test::spit(c.dir / "trace.geojson", R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32632"}},
 "features":[{"type":"Feature","properties":{"name":"Pool C"},"geometry":{"type":"Polygon","coordinates":[[[680000,4951000],[683000,4951000],[683000,4954000],[680000,4954000],[680000,4951000]]]}}]})");
   const std::string d = c.dir.string() + "/";
-  c.base = test::tool("ugs-report") + " --results " + d + "a.h5 --mesh " + d + "model.msh --trace " + d + "trace.geojson" +
+  c.base = test::tool("ugs-report") + " --thesis --results " + d + "a.h5 --mesh " + d + "model.msh --trace " + d + "trace.geojson" +
            " --crs EPSG:32632 --width 400 --height 300";
   return c;
 }

@@ -42,7 +42,7 @@ TEST(ReportFaults, OneMaxChiAndThePlotData) {
                                     "\n[[pool]]\nname = \"Pool R\"\nmaterials = [\"reservoir\"]\nschedule = \"pool.csv\"\n"
                                     "column = \"p_MPa\"\n");
   test::spit(d / "pool.csv", "date,p_MPa\n1999-01-01,10\n2000-01-01,10\n2001-01-01,16\n2002-01-01,16\n");
-  r = test::run(test::tool("ugs-report") + " --results " + d / "out.h5" + " --mesh " + d / "faulted.msh" + " --case " +
+  r = test::run(test::tool("ugs-report") + " --thesis --results " + d / "out.h5" + " --mesh " + d / "faulted.msh" + " --case " +
                 d / "report.toml" + " --faults " + d / "out_faults.h5" + " --keep-work -o " + d / "rep");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("differs from the fault results"), std::string::npos) << r.err;
@@ -131,7 +131,7 @@ TEST(ReportFaults, OneMaxChiAndThePlotData) {
 
   // A faults table without max_chi: exit 2, one line naming the file and the column, no report.
   test::spit(d / "bad.csv", "date,fault\n2000-01-01,F\n");
-  r = test::run(test::tool("ugs-report") + " --results " + d / "out.h5" + " --faults " + d / "out_faults.h5" + " --fault-table " +
+  r = test::run(test::tool("ugs-report") + " --thesis --results " + d / "out.h5" + " --faults " + d / "out_faults.h5" + " --fault-table " +
                 d / "bad.csv" + " -q -o " + d / "bad");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.err, "ugs-report: error: " + d / "bad.csv" + ": no column 'max_chi' (columns: date, fault)\n");

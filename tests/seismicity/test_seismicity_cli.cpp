@@ -193,7 +193,7 @@ TEST(SeismicityCli, SolvedFaultFromCsvAndHdf5) {
     EXPECT_LT(rel(f.number(k, f.column("rate_per_yr")), 0.2 * sum / 1e6), 1e-12) << f.text(k, 0);
   }
   // ugs-report: pictures, the density map's data and the headline of all faults at M_c.
-  const auto rep = test::run(test::tool("ugs-report") + " --results " + d / "out.h5" + " --mesh " + d / "faulted.msh" + " --case " +
+  const auto rep = test::run(test::tool("ugs-report") + " --thesis --results " + d / "out.h5" + " --mesh " + d / "faulted.msh" + " --case " +
                              d / "case.toml" + " --seismicity " + d / "csv.csv" + " --width 600 --height 400 --keep-work -q -o " +
                              d / "report");
   ASSERT_EQ(rep.exit_code, 0) << rep.err;

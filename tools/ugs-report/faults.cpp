@@ -197,7 +197,7 @@ void build_faults(Context& c) {
   } else if (c.cs && !c.cs->pools.empty() && steps.size() > 1) {
     const PoolSpec* pool = &c.cs->pools.back();
     for (const auto& p : c.cs->pools)
-      if (p.name == (c.opt.stress_pool.empty() ? "Pool C" : c.opt.stress_pool)) pool = &p;
+      if (p.name == wanted_stress_pool(c)) pool = &p;
     const CsvTable t = CsvTable::read(pool->schedule);
     const auto cd = t.column("date"), cv = t.column(pool->column);
     double lo = 1e300, hi = -1e300;
@@ -255,6 +255,9 @@ void build_faults(Context& c) {
       c.headlines.push_back({fmt::format("faults, {} pressure ({})", sc.name, steps[sc.step].date),
                              fmt::format("maximum {} on {}", field == "chi" ? "χ" : field, name), fmt::format("{:.3f}", v),
                              field == "chi" ? "about 0.1 on the regional faults" : ""});
+      // The pictured dates' chi stands for the acceptance check until the faults table (every date) is read.
+      auto& m = c.measures["chi_max"];
+      if (field == "chi" && (m.where.empty() || v > m.value)) m = {v, fmt::format("fault {} on {}", name, steps[sc.step].date)};
     };
     if (per_node) {
       std::vector<std::vector<double>> values;
@@ -339,6 +342,9 @@ void build_faults(Context& c) {
     w.text(fault).text(date).number(v).end_row();
     auto& p = peak[fault];
     if (p.second.empty()) order.push_back(fault);
+    if (r == 0) c.measures.erase("chi_max");
+    auto& m = c.measures["chi_max"];
+    if (m.where.empty() || v > m.value) m = {v, fmt::format("fault {} on {}", fault, date)};
     if (p.second.empty() || v > p.first) p = {v, date};
     // The same definition in both files: a CSV of another run would show here.
     if (const auto it = shown.find({fault, date}); it != shown.end() && std::abs(it->second - v) > 5e-7)

@@ -40,8 +40,8 @@ using namespace ugs;
 using namespace ugs::report;
 namespace fs = std::filesystem;
 
-std::vector<Phase> parse_phases(const std::vector<std::string>& specs, const std::vector<std::int64_t>& times,
-                                std::vector<std::string>& notes) {
+std::vector<Phase> parse_phases(const std::vector<std::string>& specs, const std::vector<std::int64_t>& times, const CaseFile* cs,
+                                bool thesis_phases, std::vector<std::string>& notes) {
   std::vector<Phase> out;
   for (const auto& s : specs) {
     const auto eq = s.find('='), slash = s.find('/', eq == std::string::npos ? 0 : eq);
@@ -57,6 +57,21 @@ std::vector<Phase> parse_phases(const std::vector<std::string>& specs, const std
     out.push_back(p);
   }
   if (!out.empty()) return out;
+  // The study's own phases ([[report.phase]] of the case).
+  if (cs && cs->report && !cs->report->phases.empty()) {
+    for (const auto& p : cs->report->phases) {
+      const Phase ph{p.name, *parse_iso_date(p.start), *parse_iso_date(p.end)};
+      if (ph.start < times.front() || ph.end > times.back())
+        throw InputError(cs->report->where, fmt::format("[[report.phase]] '{}' ({} to {}) is outside the results ({} to {})", p.name,
+                                                        p.start, p.end, format_iso_date(times.front()), format_iso_date(times.back())));
+      out.push_back(ph);
+    }
+    return out;
+  }
+  if (!thesis_phases) {
+    out.push_back({"run", times.front(), times.back()});
+    return out;
+  }
   // The thesis' phases, where the results reach them.
   const std::pair<const char*, const char*> thesis[] = {{"storage", "2015-05-01/2015-11-01"},
                                                         {"production", "2015-11-01/2016-05-01"},
@@ -110,8 +125,10 @@ int main(int argc, char** argv) {
                  "Faults CSV of the faulted solver, for max chi against time (default: <faults stem>.csv beside --faults)");
   app.add_option("--fault-field", o.fault_field, "Safety-factor field in the fault results")->capture_default_str();
   app.add_option("--fault-dates", o.fault_dates, "MIN_DATE,MAX_DATE: the minimum and maximum pressure scenarios");
-  app.add_option("--phase", o.phases, "NAME=START/END (repeat); default: the thesis' storage 2015, production 2015-16, "
-                                      "forecast 2025 where the results reach them");
+  app.add_option("--phase", o.phases, "NAME=START/END (repeat); default: the case's [[report.phase]], else with --thesis "
+                                      "the thesis' storage 2015, production 2015-16, forecast 2025, else the whole run");
+  app.add_flag("--thesis", o.thesis,
+               "Compare with the thesis (the po-plain twin): its phases by default and its values beside the headlines");
   app.add_option("--stress-pool", o.stress_pool, "Pool whose layer the stress pictures look at (default: Pool C)");
   app.add_option("--stress-field", o.stress_field, "Stress cell field (default: stress_change, dstress or stress)");
   app.add_option("--reference-pressure-MPa", o.reference_pressure_MPa, "Normalisation of stress changes (default: the pool's)")
@@ -200,7 +217,7 @@ int main(int argc, char** argv) {
       const FieldSeriesReader sr(c.surface_results);
       for (const auto& s : sr.steps()) surface_times.push_back(insar::step_time(s));
     }
-    c.phases = parse_phases(o.phases, surface_times, c.notes);
+    c.phases = parse_phases(o.phases, surface_times, c.cs ? &*c.cs : nullptr, o.thesis, c.notes);
     if (!o.trace.empty()) {
       const auto v = geo::read_vector(o.trace, c.crs_wkt, o.trace_where);
       for (const auto& f : v.features) {
@@ -246,6 +263,7 @@ int main(int argc, char** argv) {
     build_seismicity(c);
     build_safety(c);
     build_comparison(c);
+    build_acceptance(c);
     if (c.figures.empty()) throw InputError(o.results, "nothing to draw: " + (c.notes.empty() ? std::string("?") : c.notes.front()));
 
     // 3. The pictures: plots.py draws every figure of the manifest.
@@ -284,6 +302,6 @@ int main(int argc, char** argv) {
     for (const auto& h : c.headlines)
       if (h.group.find("InSAR") == std::string::npos)
         std::printf("  %s: %s: %s%s\n", h.group.c_str(), h.quantity.c_str(), h.value.c_str(),
-                    h.thesis.empty() ? "" : ("  [thesis: " + h.thesis + "]").c_str());
+                    h.thesis.empty() || !o.thesis ? "" : ("  [thesis: " + h.thesis + "]").c_str());
   });
 }

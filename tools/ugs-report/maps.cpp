@@ -93,6 +93,13 @@ void build_maps(Context& c) {
       hz = std::max(hz, std::hypot(d[3 * n], d[3 * n + 1]));
     }
     const std::string g = ph.label();
+    auto keep = [&](const char* key, double v, std::size_t n) {
+      auto& m = c.measures[key];
+      if (m.where.empty() || v > m.value)
+        m = {v, fmt::format("{} at x {:.0f}, y {:.0f}", ph.label(), top.points[n][0], top.points[n][1])};
+    };
+    keep("uplift_max_mm", std::max(up, 0.0), iu);
+    keep("settlement_max_mm", std::max(-down, 0.0), id);
     auto where = [&](double v, std::size_t n) {
       return v > 0 ? fmt::format("{} mm at x {:.0f}, y {:.0f}", mm(v), top.points[n][0], top.points[n][1]) : std::string("none");
     };

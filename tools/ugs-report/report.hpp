@@ -43,6 +43,7 @@ struct Options {
   std::string seismicity_window;         // START/END of the event density map (default: the first window)
   std::string scenario;                  // ugs-solve's safe-scale table (<output>_scenario.csv)
   std::string caprock;                   // ugs-solve's caprock table (<output>_caprock.csv)
+  bool thesis = false;                   // compare with the thesis: its phases by default, its values beside ours
   std::vector<std::string> compare;      // LABEL=FILE: other runs on the same mesh
   std::string compare_since;             // changes from this date (default: the first shared date)
   std::string discussion;                // Markdown paragraphs comparing the run with the thesis
@@ -64,6 +65,12 @@ struct Headline {
   std::string group, quantity, value, thesis;
 };
 
+// A number an acceptance threshold of the case's [report] is checked against, and where it was found.
+struct Measure {
+  double value = 0;
+  std::string where;
+};
+
 struct Context {
   Options opt;
   std::string work;                      // work folder (absolute)
@@ -78,6 +85,8 @@ struct Context {
   std::optional<insar::TopSurface> top;  // its top surface (the mesh's bnd:top, or the file's own cells)
   std::vector<Figure> figures;
   std::vector<Headline> headlines;
+  // uplift_max_mm, settlement_max_mm, chi_max, tensile_margin_min_MPa, shear_margin_min_MPa (acceptance.cpp)
+  std::map<std::string, Measure> measures;
   std::vector<std::string> notes;        // what was skipped and why
   std::optional<insar::PsData> measured_up, measured_east;
   std::vector<std::vector<std::array<double, 2>>> trace_lines;  // rings of the reservoir trace
@@ -124,6 +133,10 @@ void build_calibration(Context& c);
 void build_ensemble(Context& c);
 void build_seismicity(Context& c);
 void build_safety(Context& c);
+// Pass / fail of the case's [report] thresholds against the measures (last: after every builder).
+void build_acceptance(Context& c);
+// The pool the stress pictures look at: --stress-pool, the case's [report] stress_pool, Pool C, the last pool.
+std::string wanted_stress_pool(const Context& c);
 void build_comparison(Context& c);
 // Writes summary.md and summary.html in the output folder.
 void write_summary(const Context& c);

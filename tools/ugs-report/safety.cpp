@@ -130,6 +130,8 @@ void caprock_headlines(Context& c) {
     if (ws == t.rows() || t.number(r, csh) < t.number(ws, csh)) ws = r;
   }
   if (wt == t.rows()) throw InputError(c.opt.caprock, "has no rows (expected ugs-solve's caprock table)");
+  c.measures["tensile_margin_min_MPa"] = {t.number(wt, ct), fmt::format("seal {}, {}", t.text(wt, cs), t.text(wt, cd))};
+  c.measures["shear_margin_min_MPa"] = {t.number(ws, csh), fmt::format("seal {}, {}", t.text(ws, cs), t.text(ws, cd))};
   c.headlines.push_back({"safety", "caprock: smallest tensile margin (fracture pressure - pore pressure)",
                          fmt::format("{:.2f} MPa (seal {}, {}, pore pressure {:.2f} MPa){}", t.number(wt, ct), t.text(wt, cs),
                                      t.text(wt, cd), t.number(wt, cp), t.number(wt, ct) <= 0 ? ": FAILS" : ""),

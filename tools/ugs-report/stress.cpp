@@ -22,7 +22,7 @@ namespace {
 
 const PoolSpec* stress_pool(const Context& c) {
   if (!c.cs || c.cs->pools.empty()) return nullptr;
-  const std::string want = c.opt.stress_pool.empty() ? "Pool C" : c.opt.stress_pool;
+  const std::string want = wanted_stress_pool(c);
   for (const auto& p : c.cs->pools)
     if (p.name == want) return &p;
   if (!c.opt.stress_pool.empty()) {

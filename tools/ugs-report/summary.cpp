@@ -105,9 +105,13 @@ void write_summary(const Context& c) {
   // Markdown.
   std::string md = "# " + title + "\n\n";
   for (const auto& [k, v] : inputs) md += fmt::format("- {}: `{}`\n", k, v);
-  md += "- phases: " + phases + "\n\n## Headline numbers\n\n| | quantity | this run | thesis |\n|---|---|---|---|\n";
+  // The thesis' column only when the comparison is asked for (--thesis): a field's report has its own numbers.
+  const bool thesis = c.opt.thesis;
+  md += "- phases: " + phases + "\n\n## Headline numbers\n\n";
+  md += thesis ? "| | quantity | this run | thesis |\n|---|---|---|---|\n" : "| | quantity | this run |\n|---|---|---|\n";
   for (const auto& h : c.headlines)
-    md += fmt::format("| {} | {} | {} | {} |\n", md_cell(h.group), md_cell(h.quantity), md_cell(h.value), md_cell(h.thesis));
+    md += thesis ? fmt::format("| {} | {} | {} | {} |\n", md_cell(h.group), md_cell(h.quantity), md_cell(h.value), md_cell(h.thesis))
+                 : fmt::format("| {} | {} | {} |\n", md_cell(h.group), md_cell(h.quantity), md_cell(h.value));
   if (!discussion.empty()) md += "\n## Comparison with the thesis\n\n" + discussion + (discussion.back() == '\n' ? "" : "\n");
   md += "\n## Figures\n\n";
   for (const auto& f : c.figures) md += fmt::format("### {}\n\n![{}]({})\n\n{}\n\n", f.title, f.title, f.png, f.caption);
@@ -134,10 +138,10 @@ void write_summary(const Context& c) {
   h += "<h1>" + html(title) + "</h1>\n<ul>\n";
   for (const auto& [k, v] : inputs) h += fmt::format("<li>{}: <code>{}</code></li>\n", html(k), html(v));
   h += "<li>phases: " + html(phases) + "</li>\n</ul>\n<h2>Headline numbers</h2>\n<table>\n"
-       "<tr><th></th><th>quantity</th><th>this run</th><th>thesis</th></tr>\n";
+       "<tr><th></th><th>quantity</th><th>this run</th>" + std::string(thesis ? "<th>thesis</th>" : "") + "</tr>\n";
   for (const auto& x : c.headlines)
-    h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", html(x.group), html(x.quantity),
-                     html(x.value), html(x.thesis));
+    h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td>{}</tr>\n", html(x.group), html(x.quantity), html(x.value),
+                     thesis ? "<td>" + html(x.thesis) + "</td>" : "");
   h += "</table>\n";
   if (!discussion.empty()) h += "<h2>Comparison with the thesis</h2>\n" + discussion_html(discussion);
   h += "<h2>Figures</h2>\n";
@@ -165,7 +169,7 @@ void write_summary(const Context& c) {
     w.text(x.group).text(x.quantity).text(x.value);
     if (const auto v = leading_number(x.value)) w.number(*v);
     else w.text("");
-    w.text(x.thesis).end_row();
+    w.text(thesis ? x.thesis : "").end_row();
   }
   w.commit();
 }

@@ -92,6 +92,24 @@ struct SealSpec {
   double tensile_strength_Pa = 0.0;  // T0: fracture pressure = S3 + T0 (>= 0)
 };
 
+// [report] (ugs-report, docs/insar-and-reports.md "A report for the field"): the study's own phases,
+// the pool the stress pictures look at, and the acceptance thresholds its headlines are checked
+// against (pass / fail). A threshold not given is not checked.
+struct ReportPhaseSpec {
+  std::string name;
+  std::string start, end;  // ISO 8601, start before end
+};
+struct ReportSpec {
+  std::string where;                       // file:line of the table
+  std::string stress_pool;                 // a [[pool]] name; empty: the first pool
+  std::vector<ReportPhaseSpec> phases;     // [[report.phase]]
+  std::optional<double> chi_max;           // largest acceptable fault chi (0, 1]
+  std::optional<double> uplift_max_mm;     // largest acceptable uplift over a phase (> 0)
+  std::optional<double> settlement_max_mm; // largest acceptable settlement over a phase (> 0)
+  std::optional<double> tensile_margin_min_MPa;  // smallest acceptable seal tensile margin (>= 0)
+  std::optional<double> shear_margin_min_MPa;    // smallest acceptable seal shear margin (>= 0)
+};
+
 // [seismicity] and its per-fault overrides [seismicity.fault.<name>] (docs/seismicity.md): the
 // rate-and-state seismicity parameters, SI inside. A value an override does not give is the
 // section's; the section gives A_sigma, the stressing rate, the background rate and M_c.
@@ -154,6 +172,8 @@ struct CaseFile {
   std::string scenario_reference_date;     // empty: the first date of the pressure history
   double scenario_max_scale = 10.0;
   double scenario_tolerance = 0.01;        // relative width of the final bracket
+  // [report] (ugs-report); absent when the file has no such section.
+  std::optional<ReportSpec> report;
   // [seismicity] (ugs-seismicity, docs/seismicity.md); absent when the file has no such section.
   std::optional<SeismicitySpec> seismicity;
 
