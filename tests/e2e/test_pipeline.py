@@ -218,6 +218,9 @@ def check_caprock(out, case, rows):
     check(len(seals) == 1 and len(set(mat)) == 1 and abs(got_t - tmin) <= 1e-3 and abs(got_s - smin) <= 1e-3,
           f"geostatic seal margins {got_t:.4f} / {got_s:.4f} MPa = closed form {tmin:.4f} / {smin:.4f} MPa "
           f"over {len(tets)} {seal['material']} elements")
+    pics = [f for f in os.listdir(os.path.join(out, "report")) if f.startswith("seal_")]
+    check({"seal_base_tensile.png", "seal_base_shear.png"} <= set(pics) and any(f.startswith("seal_sec_") for f in pics),
+          f"report: the seal's margins on its base and along the sections ({len(pics)} pictures)")
     safety = {r["quantity"]: r["value"] for r in rows if r["group"] == "safety"}
     pools = [q for q in safety if q.startswith("maximum safe pressure, ")]
     margins = [q for q in safety if q.startswith("caprock: smallest")]

@@ -262,6 +262,7 @@ int main(int argc, char** argv) {
     build_ensemble(c);
     build_seismicity(c);
     build_safety(c);
+    build_seal_pictures(c);
     build_comparison(c);
     build_acceptance(c);
     if (c.figures.empty()) throw InputError(o.results, "nothing to draw: " + (c.notes.empty() ? std::string("?") : c.notes.front()));

@@ -133,6 +133,7 @@ void build_calibration(Context& c);
 void build_ensemble(Context& c);
 void build_seismicity(Context& c);
 void build_safety(Context& c);
+void build_seal_pictures(Context& c);
 // Pass / fail of the case's [report] thresholds against the measures (last: after every builder).
 void build_acceptance(Context& c);
 // The pool the stress pictures look at: --stress-pool, the case's [report] stress_pool, Pool C, the last pool.
