@@ -71,12 +71,24 @@ CaprockStep CaprockCheck::evaluate(const std::vector<double>& stress, const std:
     st.fracture_pressure[i] = m.fracture_pressure_Pa;
     st.tensile_margin[i] = m.tensile_margin_Pa;
     st.shear_margin[i] = m.shear_margin_Pa;
-    // Strictly smaller: the first element in output order wins a tie (deterministic).
-    auto keep = [&](CaprockWorst& w, double margin) {
-      if (margin < w.margin_Pa) w.margin_Pa = margin, w.at = c.centroid, w.pore_pressure_Pa = p;
-    };
-    keep(st.tensile_by_seal[c.seal], m.tensile_margin_Pa);
-    keep(st.shear_by_seal[c.seal], m.shear_margin_Pa);
+  }
+  // The worst element of each seal: margins within kTie of the smallest count as equal and the first
+  // in output order is named, so that rounding (another process count) does not move it among equals.
+  constexpr double kTie = 1.0;  // Pa
+  std::vector<double> low_t(seals_.size(), INFINITY), low_s(seals_.size(), INFINITY);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int k = cells_[i].seal;
+    low_t[k] = std::min(low_t[k], st.tensile_margin[i]);
+    low_s[k] = std::min(low_s[k], st.shear_margin[i]);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Cell& c = cells_[i];
+    CaprockWorst& t = st.tensile_by_seal[c.seal];
+    CaprockWorst& h = st.shear_by_seal[c.seal];
+    if (t.margin_Pa == INFINITY && st.tensile_margin[i] <= low_t[c.seal] + kTie)
+      t.margin_Pa = low_t[c.seal], t.at = c.centroid, t.pore_pressure_Pa = st.pore_pressure[i];
+    if (h.margin_Pa == INFINITY && st.shear_margin[i] <= low_s[c.seal] + kTie)
+      h.margin_Pa = low_s[c.seal], h.at = c.centroid, h.pore_pressure_Pa = st.pore_pressure[i];
   }
   for (std::size_t k = 0; k < seals_.size(); ++k) {
     if (st.tensile_by_seal[k].margin_Pa < st.tensile.margin_Pa) st.tensile = st.tensile_by_seal[k];
