@@ -147,7 +147,10 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
                               "c=$(sed -n 's/^c_R = //p' \"$1\" | head -1)\n"
                               "awk -v c=\"$c\" 'BEGIN { printf \"date,fault,max_chi\\n2013-05-01,F1,%.17g\\n2013-11-01,F1,0.1\\n"
                               "2013-05-01,F2,0.5\\n\", c / 5 }' > \"$(dirname \"$2\")/solve_faults.csv\"\n"
-                              "printf 'scale,critical\\n1,0\\n2,0\\n4,1\\n3,1\\n2.5,0\\n' > \"$(dirname \"$2\")/solve_scenario.csv\"\n");
+                              "printf 'scale,critical\\n1,0\\n2,0\\n4,1\\n3,1\\n2.5,0\\n' > \"$(dirname \"$2\")/solve_scenario.csv\"\n"
+                              // The caprock table: the seal's tensile margin c_R MPa at its lowest, shear 2 MPa.
+                              "awk -v c=\"$c\" 'BEGIN { printf \"date,seal,min_tensile_margin_MPa,min_shear_margin_MPa\\n"
+                              "2013-05-01,S,%.17g,3\\n2013-11-01,S,%.17g,2\\n\", c + 1, c }' > \"$(dirname \"$2\")/solve_caprock.csv\"\n");
   test::spit(dir / "lhs4.toml", std::string("[design]\nmethod = \"lhs\"\nmembers = 4\nseed = 9\n") + kParams);
   const auto f = test::run(test::tool("ugs-ensemble") + " run --spec " + (dir / "lhs4.toml").string() + " --case " +
                            (dir / "case.toml").string() + " --solver-command 'sh " + (dir / "fake.sh").string() +
@@ -166,14 +169,21 @@ TEST(EnsembleSolve, MorrisMembersCacheMakefileAndBadInput) {
   EXPECT_EQ(ex.number(0, ex.column("p_chi_ge_0.8")), 1.0);
   EXPECT_EQ(ex.number(0, ex.column("p_chi_ge_1")), 0.5);
   EXPECT_EQ(ex.number(1, ex.column("p_chi_ge_0.8")), 0.0);
-  bool safe = false, per_date = false;
+  bool safe = false, per_date = false, seal = false, seal_shear = false;
   for (std::size_t i = 0; i < q.rows(); ++i) {
     const std::string name(q.text(i, q.column("metric")));
     if (name == "safe_scale") safe = q.number(i, q.column("p50")) == 2.5;  // below the smallest critical 3
     if (name == "chi_max.F1.2013-11-01") per_date = q.number(i, q.column("max")) == 0.1;
+    // The members' c_R in [4, 5) and [5, 6): the seal's smallest tensile margin is c_R, its shear one 2.
+    if (name == "seal_tensile_margin_min.S")
+      seal = q.number(i, q.column("min")) >= 4 && q.number(i, q.column("min")) < 5 && q.number(i, q.column("max")) >= 5 &&
+             q.number(i, q.column("max")) < 6;
+    if (name == "seal_shear_margin_min.S") seal_shear = q.number(i, q.column("min")) == 2 && q.number(i, q.column("max")) == 2;
   }
   EXPECT_TRUE(safe);
   EXPECT_TRUE(per_date);
+  EXPECT_TRUE(seal);
+  EXPECT_TRUE(seal_shear);
 
   // 6. Bad input: exit 2, one line, nothing run.
   auto one_line = [](const test::RunResult& x) {

@@ -159,6 +159,25 @@ void scenario_metrics(const std::string& folder, Metrics& out) {
   out.emplace_back("safe_scale", any ? safe : 0.0);
 }
 
+// The seals' smallest margins over the run (ugs-solve's caprock table, docs/caprock.md), MPa, per seal
+// in name order: seal_tensile_margin_min.<seal> and seal_shear_margin_min.<seal>.
+void caprock_metrics(const std::string& folder, Metrics& out) {
+  const std::string path = one_file_ending(folder, "_caprock.csv");
+  if (path.empty()) return;
+  const CsvTable t = CsvTable::read(path);
+  const auto cs = t.column("seal"), ct = t.column("min_tensile_margin_MPa"), ch = t.column("min_shear_margin_MPa");
+  std::map<std::string, std::pair<double, double>> low;
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    auto [it, fresh] = low.try_emplace(std::string(t.text(r, cs)), t.number(r, ct), t.number(r, ch));
+    if (!fresh) it->second = {std::min(it->second.first, t.number(r, ct)), std::min(it->second.second, t.number(r, ch))};
+  }
+  if (low.empty()) throw InputError(path, "has no rows (expected ugs-solve's caprock table)");
+  for (const auto& [seal, m] : low) {
+    out.emplace_back("seal_tensile_margin_min." + seal, m.first);
+    out.emplace_back("seal_shear_margin_min." + seal, m.second);
+  }
+}
+
 // The seismicity forecast of the member (docs/seismicity.md) over each window: its per-pair fault CSVs
 // (<stem>_fault_<F>.csv, in name order) with the [seismicity] parameters of the member's case: its
 // own case copy, or `forecast_case` when given.
@@ -216,6 +235,7 @@ MemberOutputs member_outputs(const std::string& folder, const MetricOptions& opt
   }
   fault_metrics(folder, out);
   scenario_metrics(folder, out);
+  caprock_metrics(folder, out);
   seismicity_metrics(folder, options.seismic_windows, forecast_case, out);
   for (const auto& [name, v] : out)
     if (!std::isfinite(v)) throw InputError(folder, fmt::format("metric {} is not finite", name));
