@@ -525,6 +525,17 @@ INSTANTIATE_TEST_SUITE_P(
                               "bad.toml:21: [solver] tolerance = 1: outside [1e-14, 1)"},
                       BadCase{"tolerance_below_precision", "inversion_rule = \"sigma-max\"",
                               "inversion_rule = \"sigma-max\"\ntolerance = 1e-20", "[solver] tolerance = 1e-20: outside [1e-14, 1)"},
+                      // Issue 42: the mechanical earth model.
+                      BadCase{"stress_table_not_monotonic", "hydrostatic_gradient_MPa_per_m = 0.0100\n",
+                              "hydrostatic_gradient_MPa_per_m = 0.0100\nShmin_MPa = [[1000, 18], [900, 20]]\n",
+                              "bad.toml:5: 'initial_stress.Shmin_MPa' row 2: depth 900 m does not follow 1000 m"},
+                      BadCase{"shmin_above_sv_in_normal_regime", "hydrostatic_gradient_MPa_per_m = 0.0100\n",
+                              "hydrostatic_gradient_MPa_per_m = 0.0100\nShmin_MPa = [[1000, 25]]\nregime = \"normal\"\n",
+                              "bad.toml:6: regime = \"normal\" but S_hmin above S_v at depth"},
+                      BadCase{"gas_column_above_pool_top", "[solver]",
+                              "[[pool]]\nname = \"store\"\nmaterials = [\"rock\"]\nschedule = \"p.csv\"\ncolumn = \"p_MPa\"\n"
+                              "gas_water_contact_m = -1000\ngas_density_kg_per_m3 = 150\n\n[solver]",
+                              "bad.toml:19: pool 'store': gas_water_contact_m = -1000 m lies at or above the pool's top"},
                       BadCase{"newton_iterations_huge", "inversion_rule = \"sigma-max\"",
                               "inversion_rule = \"sigma-max\"\nmax_newton_iterations = 1000000",
                               "[solver] max_newton_iterations = 1000000: outside [1, 1000]"}),
