@@ -205,7 +205,7 @@ TEST(EarthModel, GasContactAboveThePoolTopIsRefused) {
   testcase::Pool pool{.name = "store", .materials = {"rock"}, .schedule = "p.csv", .gas_water_contact_m = -990,
                       .gas_density_kg_per_m3 = 200};
   const std::string e = test::input_error_of([&] { mech::build_model(mesh, read_case(s, {pool})); });
-  EXPECT_NE(e.find("c.toml:15: pool 'store': gas_water_contact_m = -990 m lies at or above the pool's top (-1000 m"), std::string::npos)
+  EXPECT_NE(e.find("c.toml:12: pool 'store': gas_water_contact_m = -990 m lies at or above the pool's top (-1000 m"), std::string::npos)
       << e;
   // A contact inside the pool, and one below it (the whole pool in gas), are fine; the model's
   // materials carry their gas column.
