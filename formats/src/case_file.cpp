@@ -290,19 +290,19 @@ void read_model_and_water(const TomlTable& root, CaseFile& c, const Collect& ok)
   }
 }
 
-// A table by depth of [initial_stress]: rows [depth_m, value], depths increasing (strictly, or
-// not decreasing where `steps` allows two rows at one depth) and at least `min_depth`, values
-// checked by `value_ok` (which names what it expects). Values are scaled by `unit` to SI.
+// A table by depth of [initial_stress]: rows [depth_m, value], depths strictly increasing from 0
+// (from above 0 unless `depth_zero_allowed`), each value checked by `value_ok` (empty: fine, else
+// what is wrong with it) and scaled by `unit` to SI. Errors name the row's line.
 template <class ValueOk>
-std::vector<DepthValue> depth_table(const TomlTable& t, const std::string& key, double min_depth, bool depth_zero_allowed,
-                                    double unit, ValueOk value_ok) {
+std::vector<DepthValue> depth_table(const TomlTable& t, const std::string& key, bool depth_zero_allowed, double unit,
+                                    ValueOk value_ok) {
   std::vector<std::string> where;
   const auto rows = t.number_rows(key, 2, &where);
   std::vector<DepthValue> table;
   const std::string name = "'initial_stress." + key + "'";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const double d = rows[i][0], v = rows[i][1];
-    if (!(d >= min_depth) || (!depth_zero_allowed && !(d > 0)))
+    if (!(d >= 0) || (!depth_zero_allowed && !(d > 0)))
       throw InputError(where[i], fmt::format("{} row {}: depth {} m is {} (depths are metres below surface_elevation_m)", name,
                                              i + 1, d, depth_zero_allowed ? "negative" : "not below the surface (expected > 0)"));
     if (i > 0 && !(d > rows[i - 1][0]))
@@ -313,6 +313,72 @@ std::vector<DepthValue> depth_table(const TomlTable& t, const std::string& key, 
     table.push_back({d, v * unit});
   }
   return table;
+}
+
+// S_v as a table (InitialStressSpec::sv_gradient): a density log or gradients per interval, not
+// with the gradient; every gradient above the hydrostatic one (`hydro`: that one was read).
+void read_sv_table(const TomlTable& t, InitialStressSpec& is, bool hydro, const Collect& ok) {
+  // S_v: one of the gradient, a density log, gradients per interval.
+  const int sv_forms = t.has("lithostatic_gradient_MPa_per_m") + t.has("Sv_density_kg_per_m3") + t.has("Sv_gradients_MPa_per_m");
+  const bool sv_one = ok([&] {
+    if (sv_forms > 1)
+      throw t.error(t.has("Sv_gradients_MPa_per_m") ? "Sv_gradients_MPa_per_m" : "Sv_density_kg_per_m3",
+                     "S_v is given twice (give one of lithostatic_gradient_MPa_per_m, Sv_density_kg_per_m3, Sv_gradients_MPa_per_m)");
+  });
+  // A gradient of S_v at or below the hydrostatic one leaves no effective vertical stress.
+  auto above_water = [&](double gradient_Pa_per_m) -> std::string {
+    if (!(gradient_Pa_per_m > 0)) return "is not positive";
+    if (hydro && gradient_Pa_per_m <= is.hydrostatic_gradient)
+      return fmt::format("gives a gradient of S_v of {:.6g} MPa/m, not above the hydrostatic {:.6g} MPa/m", gradient_Pa_per_m / kMPa,
+                         is.hydrostatic_gradient / kMPa);
+    return {};
+  };
+  if (sv_one && t.has("Sv_density_kg_per_m3"))
+    ok([&] {
+      // rho g by depth: linear between the log's samples, as the log.
+      is.sv_gradient = depth_table(t, "Sv_density_kg_per_m3", true, kGravity, [&](double rho) {
+        const std::string bad = above_water(rho * kGravity);
+        return bad.empty() ? bad : "kg/m3 " + bad;
+      });
+    });
+  if (sv_one && t.has("Sv_gradients_MPa_per_m"))
+    ok([&] {
+      // [top of the interval, its gradient]: a step at each top.
+      const auto rows = depth_table(t, "Sv_gradients_MPa_per_m", true, kMPa, [&](double g) {
+        const std::string bad = above_water(g * kMPa);
+        return bad.empty() ? bad : "MPa/m " + bad;
+      });
+      if (rows.front().depth != 0)
+        throw t.error("Sv_gradients_MPa_per_m", fmt::format("the first interval starts at depth {} m (expected 0: the intervals "
+                                                             "cover the column from the surface down)", rows.front().depth));
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (i > 0) is.sv_gradient.push_back({rows[i].depth, rows[i - 1].value});
+        is.sv_gradient.push_back(rows[i]);
+      }
+    });
+}
+
+// The tables of total horizontal stress and of the overpressure.
+void read_stress_tables(const TomlTable& t, InitialStressSpec& is, const Collect& ok) {
+  const bool table_h = t.has("Shmin_MPa");
+  auto stress_ok = [](double v) { return v > 0 ? std::string() : std::string("MPa is not positive (a total stress, compression positive)"); };
+  if (table_h) ok([&] { is.shmin = depth_table(t, "Shmin_MPa", false, kMPa, stress_ok); });
+  for (const char* key : {"SHmax_MPa", "SHmax_over_Shmin"})
+    if (t.has(key) && !table_h)
+      ok([&] { throw t.error(key, "needs Shmin_MPa (S_Hmax is given relative to, or beside, the S_hmin table)"); });
+  ok([&] {
+    if (t.has("SHmax_MPa") && t.has("SHmax_over_Shmin"))
+      throw t.error("SHmax_over_Shmin", "given together with SHmax_MPa (give S_Hmax one way)");
+  });
+  if (table_h && t.has("SHmax_MPa")) ok([&] { is.sHmax = depth_table(t, "SHmax_MPa", false, kMPa, stress_ok); });
+  if (table_h && t.has("SHmax_over_Shmin"))
+    ok([&] {
+      const double r = t.number("SHmax_over_Shmin");
+      if (!(r >= 1)) throw t.error("SHmax_over_Shmin", fmt::format("{} is below 1 (S_Hmax is the larger horizontal stress)", r));
+      is.sHmax_over_shmin = r;
+    });
+  if (t.has("overpressure_MPa"))
+    ok([&] { is.overpressure = depth_table(t, "overpressure_MPa", true, kMPa, [](double) { return std::string(); }); });
 }
 
 void read_initial_stress(const TomlTable& root, CaseFile& c, const Collect& ok) {
@@ -327,7 +393,6 @@ void read_initial_stress(const TomlTable& root, CaseFile& c, const Collect& ok) 
   for (const char* key : {"regime", "Shmin_MPa", "SHmax_MPa", "SHmax_over_Shmin", "overpressure_MPa", "Sv_density_kg_per_m3",
                           "Sv_gradients_MPa_per_m", "k0", "k_Hmax", "k_hmin"})
     if (s->has(key)) c.key_lines[std::string("initial_stress.") + key] = s->where(key);
-  c.key_lines["initial_stress"] = s->where();
   ok([&] { is.surface_elevation = s->number_or("surface_elevation_m", 0.0); });
   const bool litho = ok([&] {
     is.lithostatic_gradient =
@@ -339,40 +404,7 @@ void read_initial_stress(const TomlTable& root, CaseFile& c, const Collect& ok) 
                                         is.hydrostatic_gradient >= is.lithostatic_gradient))
       throw s->error("hydrostatic_gradient_MPa_per_m", "must lie in [0, lithostatic gradient)");
   });
-  // S_v: one of the gradient, a density log, gradients per interval.
-  const int sv_forms = s->has("lithostatic_gradient_MPa_per_m") + s->has("Sv_density_kg_per_m3") + s->has("Sv_gradients_MPa_per_m");
-  const bool sv_one = ok([&] {
-    if (sv_forms > 1)
-      throw s->error(s->has("Sv_gradients_MPa_per_m") ? "Sv_gradients_MPa_per_m" : "Sv_density_kg_per_m3",
-                     "S_v is given twice (give one of lithostatic_gradient_MPa_per_m, Sv_density_kg_per_m3, Sv_gradients_MPa_per_m)");
-  });
-  // A gradient of S_v at or below the hydrostatic one leaves no effective vertical stress.
-  auto above_water = [&](double gradient_Pa_per_m) -> std::string {
-    if (!(gradient_Pa_per_m > 0)) return "is not positive";
-    if (hydro && gradient_Pa_per_m <= is.hydrostatic_gradient)
-      return fmt::format("gives a gradient of S_v of {:.6g} MPa/m, not above the hydrostatic {:.6g} MPa/m", gradient_Pa_per_m / kMPa,
-                         is.hydrostatic_gradient / kMPa);
-    return {};
-  };
-  if (sv_one && s->has("Sv_density_kg_per_m3"))
-    ok([&] {
-      // rho g by depth: linear between the log's samples, as the log.
-      is.sv_gradient = depth_table(*s, "Sv_density_kg_per_m3", 0, true, kGravity,
-                                   [&](double rho) { return above_water(rho * kGravity).empty() ? std::string() : "kg/m3 " + above_water(rho * kGravity); });
-    });
-  if (sv_one && s->has("Sv_gradients_MPa_per_m"))
-    ok([&] {
-      // [top of the interval, its gradient]: a step at each top.
-      const auto rows = depth_table(*s, "Sv_gradients_MPa_per_m", 0, true, kMPa,
-                                    [&](double g) { return above_water(g * kMPa).empty() ? std::string() : "MPa/m " + above_water(g * kMPa); });
-      if (rows.front().depth != 0)
-        throw s->error("Sv_gradients_MPa_per_m", fmt::format("the first interval starts at depth {} m (expected 0: the intervals "
-                                                             "cover the column from the surface down)", rows.front().depth));
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (i > 0) is.sv_gradient.push_back({rows[i].depth, rows[i - 1].value});
-        is.sv_gradient.push_back(rows[i]);
-      }
-    });
+  read_sv_table(*s, is, hydro, ok);
   const bool table_h = s->has("Shmin_MPa");
   ok([&] { is.k0 = positive(*s, "k0", s->number_or("k0", 1.0)); });
   // k0 is the shorthand for k_Hmax = k_hmin = k0 (kH(), kh()): the optionals stay empty with k0,
@@ -384,24 +416,7 @@ void read_initial_stress(const TomlTable& root, CaseFile& c, const Collect& ok) 
         throw s->error(key, "given together with Shmin_MPa (the horizontal stresses come from the S_hmin table, or from k "
                             "ratios: give one form)");
       });
-  auto stress_ok = [](double v) { return v > 0 ? std::string() : std::string("MPa is not positive (a total stress, compression positive)"); };
-  if (table_h) ok([&] { is.shmin = depth_table(*s, "Shmin_MPa", 0, false, kMPa, stress_ok); });
-  for (const char* key : {"SHmax_MPa", "SHmax_over_Shmin"})
-    if (s->has(key) && !table_h)
-      ok([&] { throw s->error(key, "needs Shmin_MPa (S_Hmax is given relative to, or beside, the S_hmin table)"); });
-  ok([&] {
-    if (s->has("SHmax_MPa") && s->has("SHmax_over_Shmin"))
-      throw s->error("SHmax_over_Shmin", "given together with SHmax_MPa (give S_Hmax one way)");
-  });
-  if (table_h && s->has("SHmax_MPa")) ok([&] { is.sHmax = depth_table(*s, "SHmax_MPa", 0, false, kMPa, stress_ok); });
-  if (table_h && s->has("SHmax_over_Shmin"))
-    ok([&] {
-      const double r = s->number("SHmax_over_Shmin");
-      if (!(r >= 1)) throw s->error("SHmax_over_Shmin", fmt::format("{} is below 1 (S_Hmax is the larger horizontal stress)", r));
-      is.sHmax_over_shmin = r;
-    });
-  if (s->has("overpressure_MPa"))
-    ok([&] { is.overpressure = depth_table(*s, "overpressure_MPa", 0, true, kMPa, [](double) { return std::string(); }); });
+  read_stress_tables(*s, is, ok);
   ok([&] {
     if (!s->has("regime")) return;
     const std::string r = s->string("regime");
