@@ -215,11 +215,17 @@ GasColumn gas_column_of(const CaseFile& cs, const std::string& material) {
   return {};
 }
 
-void check_gas_contact(const PoolSpec& pool, double top) {
-  if (pool.gas_water_contact_m && *pool.gas_water_contact_m >= top)
+void check_gas_contact(const PoolSpec& pool, double top, const InitialState& state) {
+  if (!pool.gas_water_contact_m) return;
+  if (*pool.gas_water_contact_m >= top)
     throw InputError(pool.where, fmt::format("pool '{}': gas_water_contact_m = {} m lies at or above the pool's top ({:.6g} m, "
                                              "the highest node of its materials): a gas column above the pool's top (expected "
                                              "a contact below {:.6g} m)", pool.name, *pool.gas_water_contact_m, top, top));
+  const GasColumn gas{*pool.gas_water_contact_m, pool.gas_gradient_Pa_per_m};
+  if (const double p = state.pore_pressure(top, gas), sv = state.vertical_stress(top); p >= sv)
+    throw InputError(pool.where, fmt::format("pool '{}': the gas pressure {:.4g} MPa at the pool's top ({:.6g} m) reaches S_v "
+                                             "{:.4g} MPa there (a gas column of {:.6g} m leaves no effective vertical stress)",
+                                             pool.name, p * 1e-6, top, sv * 1e-6, top - *pool.gas_water_contact_m));
 }
 
 }  // namespace ugs

@@ -207,6 +207,16 @@ TEST(EarthModel, GasContactAboveThePoolTopIsRefused) {
   const std::string e = test::input_error_of([&] { mech::build_model(mesh, read_case(s, {pool})); });
   EXPECT_NE(e.find("c.toml:12: pool 'store': gas_water_contact_m = -990 m lies at or above the pool's top (-1000 m"), std::string::npos)
       << e;
+  // A gas column whose pressure at the pool's top reaches S_v there: 100 m below the surface, the
+  // contact 400 m deep (4 MPa of water) and 300 m of gas of 100 kg/m3 give 3.706 MPa against S_v 2.26 MPa.
+  testcase::InitialStress shallow = base();
+  shallow.surface_elevation_m = -900;
+  testcase::Pool tall = pool;
+  tall.gas_water_contact_m = -1300;
+  tall.gas_density_kg_per_m3 = 100;
+  EXPECT_NE(test::input_error_of([&] { mech::build_model(mesh, read_case(shallow, {tall})); })
+                .find("c.toml:12: pool 'store': the gas pressure 3.706 MPa at the pool's top (-1000 m) reaches S_v 2.26 MPa"),
+            std::string::npos);
   // A contact inside the pool, and one below it (the whole pool in gas), are fine; the model's
   // materials carry their gas column.
   for (double contact : {-1100.0, -1400.0}) {

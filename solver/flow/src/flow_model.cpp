@@ -263,7 +263,7 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
         }
     for (std::size_t pi = 0; pi < fm.pools.size(); ++pi)
       for (const auto& spec_pool : c.pools)
-        if (spec_pool.name == fm.pools[pi].name && std::isfinite(top[pi])) check_gas_contact(spec_pool, top[pi]);
+        if (spec_pool.name == fm.pools[pi].name && std::isfinite(top[pi])) check_gas_contact(spec_pool, top[pi], init);
   }
 
   // 7. Element conductance V grad N^T (K/gamma_w) grad N and lumped storage V s / 4.

@@ -219,7 +219,7 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
     for (std::size_t t = 0; t < model.tets.size(); ++t)
       if (in_pool[model.tet_material[t]])
         for (auto v : model.tets[t]) top = std::max(top, model.x[v][2]);
-    if (std::isfinite(top)) check_gas_contact(pool, top);
+    if (std::isfinite(top)) check_gas_contact(pool, top, model.initial);
   }
   model.traction_force = boundary_traction_forces(mesh, cs, model);
   return model;

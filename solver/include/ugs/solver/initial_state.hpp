@@ -71,8 +71,10 @@ InitialState initial_state_of(const CaseFile& cs, double max_depth);
 // The gas column of a material: that of the pool listing it in `materials` (water if none, or if
 // that pool has no gas_water_contact_m).
 GasColumn gas_column_of(const CaseFile& cs, const std::string& material);
-// InputError at the pool's line when its contact lies above the top of its materials (a gas column
-// above the pool's top: the pool holds no gas). `top` is the highest elevation of the pool's rock.
-void check_gas_contact(const PoolSpec& pool, double top);
+// InputError at the pool's line when its contact lies at or above the top of its materials (a gas
+// column above the pool's top: the pool holds no gas), or when the gas pressure reaches S_v at that
+// top (where p0 - S_v is largest: S_v falls faster upwards than the gas pressure). `top` is the
+// highest elevation of the pool's rock.
+void check_gas_contact(const PoolSpec& pool, double top, const InitialState& state);
 
 }  // namespace ugs
