@@ -144,8 +144,34 @@ MaterialSpec parse_material(const TomlTable& t, const Collect& ok, bool& named) 
   return m;
 }
 
-PoolSpec parse_pool(const TomlTable& t, const Collect& ok) {
-  t.reject_unknown({"name", "materials", "aquifer_materials", "schedule", "column", "reference_pressure_MPa"}, ok.errors);
+// A pool's gas column: the contact (an elevation) with the gas density or gradient, lighter than water.
+void read_gas_column(const TomlTable& t, PoolSpec& p, double hydrostatic_gradient, const Collect& ok) {
+  const bool contact = t.has("gas_water_contact_m");
+  const int weights = t.has("gas_density_kg_per_m3") + t.has("gas_gradient_MPa_per_m");
+  ok([&] {
+    if (weights > 1) throw t.error("gas_gradient_MPa_per_m", "given together with gas_density_kg_per_m3 (give one)");
+    if (contact && weights == 0)
+      throw t.error("gas_water_contact_m", "needs the gas weight (gas_density_kg_per_m3 or gas_gradient_MPa_per_m)");
+    if (!contact && weights > 0)
+      throw t.error(t.has("gas_density_kg_per_m3") ? "gas_density_kg_per_m3" : "gas_gradient_MPa_per_m",
+                    "needs gas_water_contact_m (the elevation of the gas-water contact, m)");
+  });
+  if (!contact || weights != 1) return;
+  ok([&] {
+    const std::string key = t.has("gas_density_kg_per_m3") ? "gas_density_kg_per_m3" : "gas_gradient_MPa_per_m";
+    const double v = t.number(key), g = key == "gas_density_kg_per_m3" ? v * kGravity : v * kMPa;
+    if (!(g >= 0) || !(g < hydrostatic_gradient))
+      throw t.error(key, fmt::format("{} gives a gas gradient of {:.6g} MPa/m, outside [0, {:.6g}) (gas is lighter than the "
+                                     "pore water's hydrostatic gradient)", v, g / kMPa, hydrostatic_gradient / kMPa));
+    p.gas_gradient_Pa_per_m = g;
+    p.gas_water_contact_m = t.number("gas_water_contact_m");
+  });
+}
+
+PoolSpec parse_pool(const TomlTable& t, double hydrostatic_gradient, const Collect& ok) {
+  t.reject_unknown({"name", "materials", "aquifer_materials", "schedule", "column", "reference_pressure_MPa", "gas_water_contact_m",
+                    "gas_density_kg_per_m3", "gas_gradient_MPa_per_m"},
+                   ok.errors);
   PoolSpec p;
   p.where = t.where();
   ok([&] { p.name = t.string("name"); });
@@ -171,6 +197,7 @@ PoolSpec parse_pool(const TomlTable& t, const Collect& ok) {
     if (column_read && p.column == "p_norm" && !t.has("reference_pressure_MPa"))
       throw t.error("reference_pressure_MPa", "is required for a normalized schedule (column = \"p_norm\")");
   });
+  read_gas_column(t, p, hydrostatic_gradient, ok);
   return p;
 }
 
@@ -284,28 +311,140 @@ void read_model_and_water(const TomlTable& root, CaseFile& c, const Collect& ok)
   }
 }
 
+// A table by depth of [initial_stress]: rows [depth_m, value], depths strictly increasing from 0
+// (from above 0 unless `depth_zero_allowed`), each value checked by `value_ok` (empty: fine, else
+// what is wrong with it) and scaled by `unit` to SI. Errors name the row's line.
+template <class ValueOk>
+std::vector<DepthValue> depth_table(const TomlTable& t, const std::string& key, bool depth_zero_allowed, double unit,
+                                    ValueOk value_ok) {
+  std::vector<std::string> where;
+  const auto rows = t.number_rows(key, 2, &where);
+  std::vector<DepthValue> table;
+  const std::string name = "'initial_stress." + key + "'";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double d = rows[i][0], v = rows[i][1];
+    if (!(d >= 0) || (!depth_zero_allowed && !(d > 0)))
+      throw InputError(where[i], fmt::format("{} row {}: depth {} m is {} (depths are metres below surface_elevation_m)", name,
+                                             i + 1, d, depth_zero_allowed ? "negative" : "not below the surface (expected > 0)"));
+    if (i > 0 && !(d > rows[i - 1][0]))
+      throw InputError(where[i], fmt::format("{} row {}: depth {} m does not follow {} m (the table must go down in depth, "
+                                             "strictly increasing)", name, i + 1, d, rows[i - 1][0]));
+    if (const std::string bad = value_ok(v); !bad.empty())
+      throw InputError(where[i], fmt::format("{} row {}: {} {}", name, i + 1, v, bad));
+    table.push_back({d, v * unit});
+  }
+  return table;
+}
+
+// S_v as a table (InitialStressSpec::sv_gradient): a density log or gradients per interval, not
+// with the gradient; every gradient above the hydrostatic one (`hydro`: that one was read).
+void read_sv_table(const TomlTable& t, InitialStressSpec& is, bool hydro, const Collect& ok) {
+  // S_v: one of the gradient, a density log, gradients per interval.
+  const int sv_forms = t.has("lithostatic_gradient_MPa_per_m") + t.has("Sv_density_kg_per_m3") + t.has("Sv_gradients_MPa_per_m");
+  const bool sv_one = ok([&] {
+    if (sv_forms > 1)
+      throw t.error(t.has("Sv_gradients_MPa_per_m") ? "Sv_gradients_MPa_per_m" : "Sv_density_kg_per_m3",
+                     "S_v is given twice (give one of lithostatic_gradient_MPa_per_m, Sv_density_kg_per_m3, Sv_gradients_MPa_per_m)");
+  });
+  // A gradient of S_v at or below the hydrostatic one leaves no effective vertical stress.
+  auto above_water = [&](double gradient_Pa_per_m) -> std::string {
+    if (!(gradient_Pa_per_m > 0)) return "is not positive";
+    if (hydro && gradient_Pa_per_m <= is.hydrostatic_gradient)
+      return fmt::format("gives a gradient of S_v of {:.6g} MPa/m, not above the hydrostatic {:.6g} MPa/m", gradient_Pa_per_m / kMPa,
+                         is.hydrostatic_gradient / kMPa);
+    return {};
+  };
+  if (sv_one && t.has("Sv_density_kg_per_m3"))
+    ok([&] {
+      // rho g by depth: linear between the log's samples, as the log.
+      is.sv_gradient = depth_table(t, "Sv_density_kg_per_m3", true, kGravity, [&](double rho) {
+        const std::string bad = above_water(rho * kGravity);
+        return bad.empty() ? bad : "kg/m3 " + bad;
+      });
+    });
+  if (sv_one && t.has("Sv_gradients_MPa_per_m"))
+    ok([&] {
+      // [top of the interval, its gradient]: a step at each top.
+      const auto rows = depth_table(t, "Sv_gradients_MPa_per_m", true, kMPa, [&](double g) {
+        const std::string bad = above_water(g * kMPa);
+        return bad.empty() ? bad : "MPa/m " + bad;
+      });
+      if (rows.front().depth != 0)
+        throw t.error("Sv_gradients_MPa_per_m", fmt::format("the first interval starts at depth {} m (expected 0: the intervals "
+                                                             "cover the column from the surface down)", rows.front().depth));
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (i > 0) is.sv_gradient.push_back({rows[i].depth, rows[i - 1].value});
+        is.sv_gradient.push_back(rows[i]);
+      }
+    });
+}
+
+// The tables of total horizontal stress and of the overpressure.
+void read_stress_tables(const TomlTable& t, InitialStressSpec& is, const Collect& ok) {
+  const bool table_h = t.has("Shmin_MPa");
+  auto stress_ok = [](double v) { return v > 0 ? std::string() : std::string("MPa is not positive (a total stress, compression positive)"); };
+  if (table_h) ok([&] { is.shmin = depth_table(t, "Shmin_MPa", false, kMPa, stress_ok); });
+  for (const char* key : {"SHmax_MPa", "SHmax_over_Shmin"})
+    if (t.has(key) && !table_h)
+      ok([&] { throw t.error(key, "needs Shmin_MPa (S_Hmax is given relative to, or beside, the S_hmin table)"); });
+  ok([&] {
+    if (t.has("SHmax_MPa") && t.has("SHmax_over_Shmin"))
+      throw t.error("SHmax_over_Shmin", "given together with SHmax_MPa (give S_Hmax one way)");
+  });
+  if (table_h && t.has("SHmax_MPa")) ok([&] { is.sHmax = depth_table(t, "SHmax_MPa", false, kMPa, stress_ok); });
+  if (table_h && t.has("SHmax_over_Shmin"))
+    ok([&] {
+      const double r = t.number("SHmax_over_Shmin");
+      if (!(r >= 1)) throw t.error("SHmax_over_Shmin", fmt::format("{} is below 1 (S_Hmax is the larger horizontal stress)", r));
+      is.sHmax_over_shmin = r;
+    });
+  if (t.has("overpressure_MPa"))
+    ok([&] { is.overpressure = depth_table(t, "overpressure_MPa", true, kMPa, [](double) { return std::string(); }); });
+}
+
 void read_initial_stress(const TomlTable& root, CaseFile& c, const Collect& ok) {
   std::optional<TomlTable> s;
   ok([&] { s = root.table_opt("initial_stress"); });
   if (!s) return;
   s->reject_unknown({"surface_elevation_m", "lithostatic_gradient_MPa_per_m", "hydrostatic_gradient_MPa_per_m", "k0", "k_Hmax",
-                     "k_hmin", "Hmax_azimuth_deg"},
+                     "k_hmin", "Hmax_azimuth_deg", "Sv_density_kg_per_m3", "Sv_gradients_MPa_per_m", "Shmin_MPa", "SHmax_MPa",
+                     "SHmax_over_Shmin", "overpressure_MPa", "regime"},
                     ok.errors);
   auto& is = c.initial_stress;
+  for (const char* key : {"regime", "Shmin_MPa", "SHmax_MPa", "SHmax_over_Shmin", "overpressure_MPa", "Sv_density_kg_per_m3",
+                          "Sv_gradients_MPa_per_m", "k0", "k_Hmax", "k_hmin"})
+    if (s->has(key)) c.key_lines[std::string("initial_stress.") + key] = s->where(key);
   ok([&] { is.surface_elevation = s->number_or("surface_elevation_m", 0.0); });
   const bool litho = ok([&] {
     is.lithostatic_gradient =
         positive(*s, "lithostatic_gradient_MPa_per_m", s->number_or("lithostatic_gradient_MPa_per_m", 0.0226)) * kMPa;
   });
-  ok([&] {
+  const bool hydro = ok([&] {
     is.hydrostatic_gradient = s->number_or("hydrostatic_gradient_MPa_per_m", 0.0100) * kMPa;
-    if (is.hydrostatic_gradient < 0 || (litho && is.hydrostatic_gradient >= is.lithostatic_gradient))
+    if (is.hydrostatic_gradient < 0 || (litho && !s->has("Sv_density_kg_per_m3") && !s->has("Sv_gradients_MPa_per_m") &&
+                                        is.hydrostatic_gradient >= is.lithostatic_gradient))
       throw s->error("hydrostatic_gradient_MPa_per_m", "must lie in [0, lithostatic gradient)");
   });
+  read_sv_table(*s, is, hydro, ok);
+  const bool table_h = s->has("Shmin_MPa");
   ok([&] { is.k0 = positive(*s, "k0", s->number_or("k0", 1.0)); });
   // k0 is the shorthand for k_Hmax = k_hmin = k0 (kH(), kh()): the optionals stay empty with k0,
   // and k0 with either of them is refused by read_ratios.
   if (s->has("k_Hmax") || s->has("k_hmin")) read_ratios(*s, is.k_Hmax, is.k_hmin, ok, false);
+  for (const char* key : {"k0", "k_Hmax", "k_hmin"})
+    if (table_h && s->has(key))
+      ok([&] {
+        throw s->error(key, "given together with Shmin_MPa (the horizontal stresses come from the S_hmin table, or from k "
+                            "ratios: give one form)");
+      });
+  read_stress_tables(*s, is, ok);
+  ok([&] {
+    if (!s->has("regime")) return;
+    const std::string r = s->string("regime");
+    if (r != "normal" && r != "strike-slip" && r != "reverse")
+      throw s->error("regime", fmt::format("'{}' is not one of normal, strike-slip, reverse", r));
+    is.regime = r;
+  });
   ok([&] {
     is.Hmax_azimuth_deg = s->number_or("Hmax_azimuth_deg", 0.0);
     if (!(is.Hmax_azimuth_deg >= 0 && is.Hmax_azimuth_deg < 360))
@@ -327,8 +466,28 @@ void read_materials_and_pools(const TomlTable& root, CaseFile& c, const Collect&
       ok([&] { throw t.error("name", "material defined twice"); });
   }
   ok([&] { pools = root.tables("pool"); });
-  for (const auto& t : pools) c.pools.push_back(parse_pool(t, ok));
+  for (const auto& t : pools) c.pools.push_back(parse_pool(t, c.initial_stress.hydrostatic_gradient, ok));
+  // The table form's horizontal stresses are the table's in every rock: a material's own ratios
+  // would have nothing to scale.
+  if (c.initial_stress.horizontal_table())
+    for (std::size_t i = 0; i < materials.size(); ++i)
+      for (const char* key : {"k0", "k_Hmax", "k_hmin"})
+        if (materials[i].has(key))
+          ok([&] {
+            throw materials[i].error(key, "a material's own stress ratio with [initial_stress] Shmin_MPa (the horizontal "
+                                          "stresses come from the S_hmin table in every rock; give the ratios or the table)");
+          });
   if (!all_named) return;
+  // A material holds one pore fluid at the initial state: at most one pool with a gas column lists it.
+  std::map<std::string, const PoolSpec*> gas_pool;
+  for (const auto& p : c.pools)
+    if (p.gas_water_contact_m)
+      for (const auto& m : p.materials)
+        if (const auto [it, fresh] = gas_pool.emplace(m, &p); !fresh)
+          ok([&] {
+            throw InputError(p.where, fmt::format("pool '{}': material '{}' is also in pool '{}', and both have a gas column (a "
+                                                  "rock has one gas-water contact)", p.name, m, it->second->name));
+          });
   for (const auto& p : c.pools)
     for (const auto& list : {p.materials, p.aquifer_materials})
       for (const auto& m : list)

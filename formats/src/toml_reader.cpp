@@ -170,6 +170,32 @@ std::vector<double> TomlTable::numbers(const std::string& key) const {
   return r;
 }
 
+std::vector<std::vector<double>> TomlTable::number_rows(const std::string& key, std::size_t width,
+                                                        std::vector<std::string>* row_where) const {
+  const auto& v = at(key);
+  const std::string shape = fmt::format("an array of rows [{}]", width == 2 ? "depth_m, value" : "numbers");
+  if (!v.is_array()) throw error(key, fmt::format("expected {}, got {}", shape, type_name(v)));
+  if (v.as_array().empty()) throw error(key, fmt::format("is empty (expected {})", shape));
+  std::vector<std::vector<double>> rows;
+  for (const auto& row : v.as_array()) {
+    const std::string at_row = row.location().line() > 0 ? fmt::format("{}:{}", file_, row.location().line()) : where(key);
+    const std::string name = fmt::format("'{}' row {}", path_.empty() ? key : path_ + "." + key, rows.size() + 1);
+    if (!row.is_array() || row.as_array().size() != width)
+      throw InputError(at_row, fmt::format("{}: expected {} numbers [{}], got {}", name, width,
+                                           width == 2 ? "depth_m, value" : "...",
+                                           row.is_array() ? std::to_string(row.as_array().size()) + " values" : type_name(row)));
+    std::vector<double> r;
+    for (const auto& e : row.as_array()) {
+      if (e.is_floating()) r.push_back(e.as_floating());
+      else if (e.is_integer()) r.push_back(static_cast<double>(e.as_integer()));
+      else throw InputError(at_row, fmt::format("{}: expected numbers, found {}", name, type_name(e)));
+    }
+    rows.push_back(std::move(r));
+    if (row_where) row_where->push_back(at_row);
+  }
+  return rows;
+}
+
 std::vector<std::string> TomlTable::strings(const std::string& key) const {
   const auto& v = at(key);
   if (v.is_string()) return {v.as_string().str};

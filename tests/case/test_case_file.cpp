@@ -267,3 +267,67 @@ TEST(CaseFile, EveryProblemIsReportedAtOnceInFileOrder) {
       "c.toml:19: 'scenario.sure': unknown key (known here: max_scale, pressure_scale, reference_date, scale_tolerance)"};
   EXPECT_EQ(lines, expected) << e;
 }
+
+// ---- [initial_stress] tables by depth and the pools' gas columns (issue 42) ---------------------
+TEST(CaseFile, EarthModelTablesConvertToSI) {
+  const auto dir = test::temp_dir("case");
+  test::spit(dir / "c.toml",
+             "[initial_stress]\nSv_gradients_MPa_per_m = [[0, 0.02], [800, 0.025]]\n"
+             "Shmin_MPa = [\n  [1000, 18],\n  [2000, 40.5],\n]\nSHmax_over_Shmin = 1.2\n"
+             "overpressure_MPa = [[1500, 0], [1600, 7]]\nregime = \"normal\"\n"
+             "[[material]]\nname = \"res\"\n"
+             "[[pool]]\nname = \"p\"\nmaterials = [\"res\"]\nschedule = \"p.csv\"\ncolumn = \"p_MPa\"\n"
+             "gas_water_contact_m = -1540.5\ngas_density_kg_per_m3 = 180\n");
+  const CaseFile c = read_case_file((dir / "c.toml").string());
+  fs::remove_all(dir);
+  const auto& is = c.initial_stress;
+  // The intervals become a gradient with a step at 800 m.
+  ASSERT_EQ(is.sv_gradient.size(), 3u);
+  EXPECT_EQ(is.sv_gradient[1].depth, 800);
+  EXPECT_EQ(is.sv_gradient[1].value, 0.02e6);
+  EXPECT_EQ(is.sv_gradient[2].value, 0.025e6);
+  ASSERT_EQ(is.shmin.size(), 2u);
+  EXPECT_EQ(is.shmin[1].value, 40.5e6);
+  EXPECT_EQ(*is.sHmax_over_shmin, 1.2);
+  EXPECT_EQ(is.overpressure[1].value, 7e6);
+  EXPECT_EQ(is.regime, "normal");
+  EXPECT_TRUE(is.horizontal_table());
+  EXPECT_EQ(c.where("initial_stress.regime"), (dir / "c.toml").string() + ":9");
+  EXPECT_EQ(*c.pools[0].gas_water_contact_m, -1540.5);
+  EXPECT_DOUBLE_EQ(c.pools[0].gas_gradient_Pa_per_m, 180 * kGravity);
+}
+
+TEST(CaseFile, EarthModelBadInputNamesTheLine) {
+  auto has = [](const std::string& e, const std::string& part) {
+    EXPECT_NE(e.find(part), std::string::npos) << e;
+  };
+  // A row that goes back up names its own line.
+  has(error_of("[initial_stress]\nShmin_MPa = [\n  [1000, 18],\n  [900, 20],\n]\n"),
+      "c.toml:4: 'initial_stress.Shmin_MPa' row 2: depth 900 m does not follow 1000 m");
+  has(error_of("[initial_stress]\nShmin_MPa = [[0, 18]]\n"), "row 1: depth 0 m is not below the surface");
+  has(error_of("[initial_stress]\nShmin_MPa = [[1000, -18]]\n"), "row 1: -18 MPa is not positive");
+  has(error_of("[initial_stress]\nShmin_MPa = [[1000, 18, 3]]\n"), "row 1: expected 2 numbers [depth_m, value], got 3 values");
+  has(error_of("[initial_stress]\nShmin_MPa = []\n"), "'initial_stress.Shmin_MPa': is empty");
+  has(error_of("[initial_stress]\nlithostatic_gradient_MPa_per_m = 0.0226\nSv_density_kg_per_m3 = [[0, 2300]]\n"),
+      "c.toml:3: 'initial_stress.Sv_density_kg_per_m3': S_v is given twice");
+  has(error_of("[initial_stress]\nSv_density_kg_per_m3 = [[0, 2300], [500, 900]]\n"),
+      "row 2: 900 kg/m3 gives a gradient of S_v of 0.008829 MPa/m, not above the hydrostatic 0.01 MPa/m");
+  has(error_of("[initial_stress]\nSv_gradients_MPa_per_m = [[100, 0.0226]]\n"), "the first interval starts at depth 100 m (expected 0");
+  has(error_of("[initial_stress]\nk0 = 0.8\nShmin_MPa = [[1000, 18]]\n"),
+      "c.toml:2: 'initial_stress.k0': given together with Shmin_MPa");
+  has(error_of("[initial_stress]\nSHmax_over_Shmin = 1.2\n"), "'initial_stress.SHmax_over_Shmin': needs Shmin_MPa");
+  has(error_of("[initial_stress]\nShmin_MPa = [[1000, 18]]\nSHmax_over_Shmin = 0.9\n"), "0.9 is below 1");
+  has(error_of("[initial_stress]\nregime = \"extensional\"\n"), "'extensional' is not one of normal, strike-slip, reverse");
+  has(error_of("[initial_stress]\nShmin_MPa = [[1000, 18]]\n[[material]]\nname = \"a\"\nk_hmin = 0.7\n"),
+      "c.toml:5: 'material[0].k_hmin': a material's own stress ratio with [initial_stress] Shmin_MPa");
+  const std::string pool = "[[material]]\nname = \"a\"\n[[pool]]\nname = \"p\"\nmaterials = [\"a\"]\nschedule = \"p.csv\"\n"
+                           "column = \"p_MPa\"\n";
+  has(error_of(pool + "gas_water_contact_m = -1500\n"), "c.toml:8: 'pool[0].gas_water_contact_m': needs the gas weight");
+  has(error_of(pool + "gas_density_kg_per_m3 = 180\n"), "'pool[0].gas_density_kg_per_m3': needs gas_water_contact_m");
+  has(error_of(pool + "gas_water_contact_m = -1500\ngas_density_kg_per_m3 = 1100\n"),
+      "1100 gives a gas gradient of 0.010791 MPa/m, outside [0, 0.01)");
+  has(error_of(pool + "gas_water_contact_m = -1500\ngas_density_kg_per_m3 = 180\n" +
+               "[[pool]]\nname = \"q\"\nmaterials = [\"a\"]\nschedule = \"p.csv\"\ncolumn = \"p_MPa\"\n"
+               "gas_water_contact_m = -1400\ngas_gradient_MPa_per_m = 0.002\n"),
+      "pool 'q': material 'a' is also in pool 'p', and both have a gas column");
+}

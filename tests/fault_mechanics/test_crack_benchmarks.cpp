@@ -56,8 +56,8 @@ void run(CrackRun& c, double psi, double friction_deg, const fem::Vec6& sigma0, 
   const CaseFile cs = slab_case(friction_deg);
   c.model = mech::build_model(c.mesh, cs, true);
   contact::InitialFaultState init;
-  init.total_stress = [&](const Point3&, double, const std::array<double, 2>&) { return sigma0; };
-  init.pressure = [](const Point3&) { return 0.0; };
+  init.total_stress = [&](const Point3&, double, const std::array<double, 2>&, const GasColumn&) { return sigma0; };
+  init.pressure = [](const Point3&, const GasColumn&) { return 0.0; };
   c.fm = contact::build_fault_model(c.mesh, cs, c.model, init);
   contact::ContactOptions copt;
   copt.solver = solver;

@@ -1,4 +1,5 @@
-// General in-situ stress (issue 21): [initial_stress] k_Hmax, k_hmin, Hmax_azimuth_deg.
+// General in-situ stress (issue 21): [initial_stress] k_Hmax, k_hmin, Hmax_azimuth_deg; the
+// mechanical earth model (issue 42, V9 extended at the end): overpressure, gas cap, S_hmin table.
 //  Tensor — mech::InitialState::effective_stress against the hand formula
 //       sigma' = sigma'_v (k_Hmax s s^T + k_hmin h h^T + e_z e_z^T), s = (sin a, cos a, 0),
 //       h = (cos a, -sin a, 0), at azimuths 0, 30, 90 and 135 degrees; k_Hmax = k_hmin = k0 gives
@@ -8,12 +9,14 @@
 //       sigma_n = n.S.n and tau = |S n - sigma_n n| with S = sigma' - alpha p0 I.
 #include <cmath>
 #include <cstring>
+#include <functional>
 
 #include <gtest/gtest.h>
 
 #include "case_builders.hpp"
 #include "fault_meshes.hpp"
 #include "ugs/contact/fault_model.hpp"
+#include "ugs/contact/pair_law.hpp"
 #include "ugs/fem/voigt.hpp"
 #include "ugs/mechanics/model.hpp"
 
@@ -207,4 +210,137 @@ TEST(InsituTensor, OwnRatiosBesideAFaultGiveItsTractions) {
   EXPECT_LT(worst_traction_error(fm, model, f, 1.1, 0.7, tau_seen, sn_seen), 1e-9);
   // The global ratios would give other tractions: the check above can fail.
   EXPECT_GT(worst_traction_error(fm, model, f, 1.3, 0.9, tau_seen, sn_seen), 1e-2);
+}
+
+// ---- V9 extended: the mechanical earth model on faults (issue 42) --------------------------------
+// A fault in an overpressured interval (ratio form) and a fault in a pool's gas cap (table form:
+// S_hmin from two leak-off points, S_Hmax by ratio): every pair's initial normal and shear traction,
+// pore pressure and safety factor chi against the closed form written out here:
+//   S_v = gamma_lith d, p0 = gamma_hyd d + dp(d) in water, p0 = p_w(z_gwc) - gamma_gas (z - z_gwc) in gas,
+//   sigma' = -(S - alpha p0) per principal direction (table form) or k sigma'_v (ratio form),
+//   S_total = sigma' - alpha p0 I, sigma_n = n.S.n, tau = |S n - sigma_n n|,
+//   chi = tau / (c - (sigma_n + p0) tan phi).
+namespace {
+
+struct ClosedForm {
+  std::function<double(double d)> p0;        // pore pressure at depth d
+  std::function<M3(double d, double p)> S;   // total stress at depth d with pore pressure p
+};
+
+// Largest relative errors of the pairs' tractions and p0 (err) and of chi (chi_err) against cf.
+void compare_with_closed_form(const contact::FaultModel& fm, const FaultCase& f, const ClosedForm& cf, double& err,
+                              double& chi_err, double& p_min, double& p_max) {
+  const Point3 plane = unit_normal(f);
+  const double mu = std::tan(30 * M_PI / 180);
+  err = chi_err = 0;
+  p_min = 1e300, p_max = -1e300;
+  for (const auto& p : fm.pairs) {
+    const double d = -p.x[2], p0 = cf.p0(d);
+    const M3 S = cf.S(d, p0);
+    double Sn[3];
+    for (int i = 0; i < 3; ++i) Sn[i] = S[i][0] * plane[0] + S[i][1] * plane[1] + S[i][2] * plane[2];
+    const double sn = Sn[0] * plane[0] + Sn[1] * plane[1] + Sn[2] * plane[2];
+    const double tau = std::sqrt(std::pow(Sn[0] - sn * plane[0], 2) + std::pow(Sn[1] - sn * plane[1], 2) +
+                                 std::pow(Sn[2] - sn * plane[2], 2));
+    const double scale = std::abs(sn);
+    err = std::max({err, std::abs(p.lambda0[2] - sn) / scale, std::abs(std::hypot(p.lambda0[0], p.lambda0[1]) - tau) / scale,
+                    std::abs(p.p0 - p0) / scale});
+    const double chi_want = tau / (0.0 - (sn + p0) * mu);
+    const double chi_got = contact::safety_factor(std::hypot(p.lambda0[0], p.lambda0[1]), p.lambda0[2] + p.p0, 0.0, mu,
+                                                  contact::PairState::Stick);
+    chi_err = std::max(chi_err, std::abs(chi_got - chi_want) / chi_want);
+    p_min = std::min(p_min, p0 - 0.0100e6 * d), p_max = std::max(p_max, p0 - 0.0100e6 * d);
+  }
+}
+
+}  // namespace
+
+TEST(InsituEarthModel, FaultInAnOverpressuredInterval) {
+  const FaultCase f{"dip60_strike_N", 60, 1, 0, -1, 30};
+  const Mesh mesh = faulted_box(f);
+  CaseFile cs = faulted_case();
+  cs.initial_stress.Hmax_azimuth_deg = f.azimuth;
+  // 0 above 300 m, rising to 2 MPa at 480 m and held below: the fault's pairs (depths 260 to 520 m, every
+  // 86.6 m) lie above the ramp, on it and below it.
+  cs.initial_stress.overpressure = {{300, 0}, {480, 2e6}};
+  const mech::Model model = mech::build_model(mesh, cs, true);
+  const contact::FaultModel fm = contact::build_fault_model(mesh, cs, model, contact::geostatic_fault_state(model.initial));
+  ASSERT_GT(fm.pairs.size(), 20u);
+  const double alpha = 0.9;
+  ClosedForm cf;
+  cf.p0 = [](double d) { return 0.0100e6 * d + (d <= 300 ? 0.0 : d >= 480 ? 2e6 : 2e6 * (d - 300) / 180); };
+  cf.S = [&](double d, double p) {
+    M3 S = hand_effective(-(0.0226e6 * d - alpha * p), 1.3, 0.9, f.azimuth);
+    for (int k = 0; k < 3; ++k) S[k][k] -= alpha * p;
+    return S;
+  };
+  double err, chi_err, op_min, op_max;
+  compare_with_closed_form(fm, f, cf, err, chi_err, op_min, op_max);
+  std::printf("overpressure: %zu pairs, overpressure %.2f to %.2f MPa, worst relative error %.2e, chi %.2e\n", fm.pairs.size(),
+              op_min * 1e-6, op_max * 1e-6, err, chi_err);
+  EXPECT_LT(err, 1e-9);
+  EXPECT_LT(chi_err, 1e-9);
+  EXPECT_LT(op_min, 1.0);     // pairs above the ramp (hydrostatic)
+  EXPECT_GT(op_max, 1.99e6);  // and below it
+  // The hydrostatic state gives other tractions: the comparison can fail.
+  CaseFile hydro_case = faulted_case();
+  hydro_case.initial_stress.Hmax_azimuth_deg = f.azimuth;
+  const mech::Model hydro_model = mech::build_model(mesh, hydro_case, true);
+  const contact::FaultModel hydro =
+      contact::build_fault_model(mesh, hydro_case, hydro_model, contact::geostatic_fault_state(hydro_model.initial));
+  compare_with_closed_form(hydro, f, cf, err, chi_err, op_min, op_max);
+  EXPECT_GT(err, 1e-2);
+}
+
+TEST(InsituEarthModel, FaultInTheGasCap) {
+  const FaultCase f{"vertical_strike_N45E", 90, 1, -1, 0, 30};
+  const Mesh mesh = faulted_box(f);  // fault pairs from z = -350 to -150 m
+  CaseFile cs = faulted_case();
+  cs.initial_stress.k_Hmax.reset();
+  cs.initial_stress.k_hmin.reset();
+  cs.initial_stress.Hmax_azimuth_deg = f.azimuth;
+  // S_hmin from two leak-off points (the fault lies between them and above the first), S_Hmax = 1.2 S_hmin.
+  cs.initial_stress.shmin = {{200, 3.6e6}, {400, 7.8e6}};
+  cs.initial_stress.sHmax_over_shmin = 1.2;
+  PoolSpec pool;
+  pool.name = "store";
+  pool.where = "insitu.toml:3";
+  pool.materials = {"rock"};
+  pool.gas_water_contact_m = -250;
+  pool.gas_gradient_Pa_per_m = 180 * kGravity;  // 180 kg/m3
+  cs.pools.push_back(pool);
+  const mech::Model model = mech::build_model(mesh, cs, true);
+  ASSERT_EQ(model.material_gas.size(), 1u);
+  EXPECT_EQ(model.material_gas[0].contact_elevation, -250);
+  const contact::FaultModel fm = contact::build_fault_model(mesh, cs, model, contact::geostatic_fault_state(model.initial));
+  ASSERT_GT(fm.pairs.size(), 20u);
+  const double alpha = 0.9, a = f.azimuth * M_PI / 180;
+  ClosedForm cf;
+  cf.p0 = [](double d) {
+    const double z = -d;
+    return z > -250 ? 0.0100e6 * 250 - 180 * 9.81 * (z + 250) : 0.0100e6 * d;
+  };
+  cf.S = [&](double d, double p) {
+    const double sh = d <= 200 ? 3.6e6 * d / 200 : d >= 400 ? 7.8e6 * d / 400 : 3.6e6 + 4.2e6 * (d - 200) / 200;
+    const double sH = 1.2 * sh, sv = 0.0226e6 * d;
+    const double s[3] = {std::sin(a), std::cos(a), 0}, h[3] = {std::cos(a), -std::sin(a), 0};
+    M3 S{};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) S[i][j] = -(sH - alpha * p) * s[i] * s[j] - (sh - alpha * p) * h[i] * h[j];
+    S[2][2] = -(sv - alpha * p);
+    for (int k = 0; k < 3; ++k) S[k][k] -= alpha * p;
+    return S;
+  };
+  double err, chi_err, excess_min, excess_max;
+  compare_with_closed_form(fm, f, cf, err, chi_err, excess_min, excess_max);
+  std::printf("gas cap: %zu pairs, p0 - hydrostatic %.3f to %.3f MPa, worst relative error %.2e, chi %.2e\n", fm.pairs.size(),
+              excess_min * 1e-6, excess_max * 1e-6, err, chi_err);
+  EXPECT_LT(err, 1e-9);
+  EXPECT_LT(chi_err, 1e-9);
+  // Pairs in the gas (p0 - hydrostatic = (gamma_w - gamma_g) (z - z_gwc) at the highest) and in water.
+  double z_top = -1e300;
+  for (const auto& p : fm.pairs) z_top = std::max(z_top, p.x[2]);
+  EXPECT_GT(z_top, -200);
+  EXPECT_NEAR(excess_max, (0.0100e6 - 180 * 9.81) * (z_top + 250), 1e-6);
+  EXPECT_NEAR(excess_min, 0.0, 1e-6);
 }

@@ -116,8 +116,8 @@ TEST(Projection, DippingFaultTractionsEqualProjectedStress) {
       model.prescribed[v][a] = E[a][0] * model.x[v][0] + E[a][1] * model.x[v][1] + E[a][2] * model.x[v][2];
   const fem::Vec6 sigma0{-30e6, -25e6, -40e6, 2e6, -3e6, 1e6};  // thesis order xx yy zz yz xz xy
   contact::InitialFaultState init;
-  init.total_stress = [&](const Point3&, double, const std::array<double, 2>&) { return sigma0; };
-  init.pressure = [](const Point3&) { return 0.0; };
+  init.total_stress = [&](const Point3&, double, const std::array<double, 2>&, const GasColumn&) { return sigma0; };
+  init.pressure = [](const Point3&, const GasColumn&) { return 0.0; };
   const contact::FaultModel fm = contact::build_fault_model(mesh, cs, model, init);
   ASSERT_GT(fm.pairs.size(), 20u);
 

@@ -131,8 +131,8 @@ V8Result run_v8(const V8Options& o) {
   mech::Model model = mech::build_model(mesh, cs, true);
   const fem::Vec6 sigma0{-50e6, -50e6, -50e6, 0, 0, 0};
   contact::InitialFaultState init;
-  init.total_stress = [&](const Point3&, double, const std::array<double, 2>&) { return sigma0; };
-  init.pressure = [](const Point3&) { return 0.0; };
+  init.total_stress = [&](const Point3&, double, const std::array<double, 2>&, const GasColumn&) { return sigma0; };
+  init.pressure = [](const Point3&, const GasColumn&) { return 0.0; };
   const contact::FaultModel fm = contact::build_fault_model(mesh, cs, model, init);
   const std::vector<double> dp = test::cell_values_in(
       model,

@@ -218,8 +218,18 @@ TEST(FlowModel, StorageFromCompressibilityLawAtDepth) {
   // At z = -1,500 m: sigma_z = 0.0126 MPa/m * 1,550 m = 19.53 MPa; c_M = 1.0044e-2 * 19.53^-1.1347 1/MPa.
   const double sigma = 0.0126 * 1550;
   const double cm = 1.0044e-2 * std::pow(sigma, -1.1347) * 1e-6;
-  EXPECT_NEAR(initial_effective_vertical_stress(c.initial_stress, -1500), sigma * 1e6, 1e-3);
-  EXPECT_NEAR(storage_coefficient(c, m, -1500), 0.2 * 4.4e-10 + cm, 1e-20);
+  const InitialState init = initial_state_of(c, 2000);
+  EXPECT_NEAR(initial_effective_vertical_stress(c, init, m, -1500), sigma * 1e6, 1e-3);
+  EXPECT_NEAR(storage_coefficient(c, init, m, -1500), 0.2 * 4.4e-10 + cm, 1e-20);
   // Near or above the surface the stress is floored at sigma_z_min_MPa (0.1 MPa by default), as in the mechanics.
-  EXPECT_NEAR(storage_coefficient(c, m, 60), 0.2 * 4.4e-10 + 1.0044e-2 * std::pow(0.1, -1.1347) * 1e-6, 1e-20);
+  EXPECT_NEAR(storage_coefficient(c, init, m, 60), 0.2 * 4.4e-10 + 1.0044e-2 * std::pow(0.1, -1.1347) * 1e-6, 1e-20);
+  // The material's Biot coefficient enters as in the mechanics: sigma'_v = S_v - alpha p0.
+  m.biot = 0.8;
+  EXPECT_NEAR(initial_effective_vertical_stress(c, init, m, -1500), (0.0226 - 0.8 * 0.0100) * 1550 * 1e6, 1e-3);
+  // The mechanical earth model's pore pressure enters too: a constant overpressure of 2 MPa.
+  c.initial_stress.overpressure = {{0, 2e6}};
+  const InitialState over = initial_state_of(c, 2000);
+  EXPECT_NEAR(initial_effective_vertical_stress(c, over, m, -1500), (0.0226 - 0.8 * 0.0100) * 1550 * 1e6 - 0.8 * 2e6, 1e-3);
+  const double cm_over = 1.0044e-2 * std::pow((0.0226 - 0.8 * 0.0100) * 1550 - 1.6, -1.1347) * 1e-6;
+  EXPECT_NEAR(storage_coefficient(c, over, m, -1500), 0.2 * 4.4e-10 + cm_over, 1e-20);
 }

@@ -346,6 +346,44 @@ TEST(SolveTool, RatiosAndTractionsOnOneAndTwoProcesses) {
   EXPECT_GT(rock_like, s.size() / 6 / 2) << "most elements are rock with sigma'_xx / sigma'_yy = 0.6 / 1.2";
 }
 
+// Issue 42: a mechanical earth model (tables by depth, an overpressure, a gas column in Pool A)
+// reaches every rank (its tables are serialized with the model): the small case gives the same u
+// and stress on 1 and 2 processes, and other numbers than the gradient form it replaces.
+TEST(SolveTool, EarthModelOnOneAndTwoProcesses) {
+  Dir d("solve-earth");
+  ASSERT_EQ(test::run(test::make_case() + " small " + d.path.string() + " --refine 0.5").exit_code, 0);
+  const std::string args = d / "mesh.msh" + " --pressure " + d / "flow_pool_a.h5" + " --pressure " + d / "flow_pool_c.h5" +
+                           " --until 1959-12-01 --solver mumps";
+  std::string text = test::slurp(d / "case.toml");
+  text.replace(text.find("dates = ["), 36, "dates = [\"1959-11-01\", \"1959-12-01\"]");
+  test::spit(d / "gradients.toml", text);
+  auto swap = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  swap("lithostatic_gradient_MPa_per_m = 0.0226\n", "Sv_density_kg_per_m3 = [[0, 2100], [1500, 2400]]\n");
+  swap("k0 = 0.9\n", "Shmin_MPa = [[1000, 17], [2000, 36]]\nSHmax_over_Shmin = 1.1\nHmax_azimuth_deg = 30\n"
+                     "overpressure_MPa = [[1450, 0], [1500, 3]]\nregime = \"normal\"\n");
+  swap("column = \"p_MPa\"\n", "column = \"p_MPa\"\ngas_water_contact_m = -1425\ngas_density_kg_per_m3 = 180\n");
+  test::spit(d / "earth.toml", text);
+  for (const std::string tag : {"earth", "gradients"}) {
+    auto r1 = test::run(test::solve_cmd() + " " + args + " --case " + d / (tag + ".toml") + " -o " + d / (tag + "1.h5"));
+    ASSERT_EQ(r1.exit_code, 0) << r1.err;
+    if (tag != "earth") continue;
+    auto r2 = test::run(test::solve_cmd(2) + " " + args + " --case " + d / (tag + ".toml") + " -o " + d / (tag + "2.h5"));
+    ASSERT_EQ(r2.exit_code, 0) << r2.err;
+    const auto u1 = test::last_field(d / "earth1.h5", "u", false), u2 = test::last_field(d / "earth2.h5", "u", false);
+    const auto s1 = test::last_field(d / "earth1.h5", "stress", true), s2 = test::last_field(d / "earth2.h5", "stress", true);
+    EXPECT_LT(test::max_rel_diff(u1, u2), 1e-10);
+    EXPECT_LT(test::max_rel_diff(s1, s2), 1e-10);
+  }
+  const auto se = test::last_field(d / "earth1.h5", "stress", true), sg = test::last_field(d / "gradients1.h5", "stress", true);
+  const auto ue = test::last_field(d / "earth1.h5", "u", false), ug = test::last_field(d / "gradients1.h5", "u", false);
+  EXPECT_GT(test::max_rel_diff(se, sg), 1e-2);  // other initial stresses
+  EXPECT_GT(test::max_rel_diff(ue, ug), 1e-3);  // other c_M (sigma'_v0 with the density log, the gas cap)
+}
+
 // Determinism: the same input on the same number of processes gives the same numbers, bit for bit
 // (the partition is Scotch's with a fixed seed: through PETSc's PT-Scotch path it changed from run
 // to run, and the displacements with it, by ~1e-9 m on a 52,000-node box).
@@ -525,6 +563,17 @@ INSTANTIATE_TEST_SUITE_P(
                               "bad.toml:21: [solver] tolerance = 1: outside [1e-14, 1)"},
                       BadCase{"tolerance_below_precision", "inversion_rule = \"sigma-max\"",
                               "inversion_rule = \"sigma-max\"\ntolerance = 1e-20", "[solver] tolerance = 1e-20: outside [1e-14, 1)"},
+                      // Issue 42: the mechanical earth model.
+                      BadCase{"stress_table_not_monotonic", "hydrostatic_gradient_MPa_per_m = 0.0100\n",
+                              "hydrostatic_gradient_MPa_per_m = 0.0100\nShmin_MPa = [[1000, 18], [900, 20]]\n",
+                              "bad.toml:5: 'initial_stress.Shmin_MPa' row 2: depth 900 m does not follow 1000 m"},
+                      BadCase{"shmin_above_sv_in_normal_regime", "hydrostatic_gradient_MPa_per_m = 0.0100\n",
+                              "hydrostatic_gradient_MPa_per_m = 0.0100\nShmin_MPa = [[1000, 25]]\nregime = \"normal\"\n",
+                              "bad.toml:6: regime = \"normal\" but S_hmin above S_v at depth"},
+                      BadCase{"gas_column_above_pool_top", "[solver]",
+                              "[[pool]]\nname = \"store\"\nmaterials = [\"rock\"]\nschedule = \"p.csv\"\ncolumn = \"p_MPa\"\n"
+                              "gas_water_contact_m = -1000\ngas_density_kg_per_m3 = 150\n\n[solver]",
+                              "bad.toml:19: pool 'store': gas_water_contact_m = -1000 m lies at or above the pool's top"},
                       BadCase{"newton_iterations_huge", "inversion_rule = \"sigma-max\"",
                               "inversion_rule = \"sigma-max\"\nmax_newton_iterations = 1000000",
                               "[solver] max_newton_iterations = 1000000: outside [1, 1000]"}),

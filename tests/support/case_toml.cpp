@@ -54,6 +54,23 @@ CaseToml& CaseToml::initial_stress(const InitialStress& s) {
   if (s.lithostatic_gradient_MPa_per_m) add("lithostatic_gradient_MPa_per_m = " + gradient(*s.lithostatic_gradient_MPa_per_m) + "\n");
   if (s.hydrostatic_gradient_MPa_per_m) add("hydrostatic_gradient_MPa_per_m = " + gradient(*s.hydrostatic_gradient_MPa_per_m) + "\n");
   if (s.k0) add("k0 = " + number(*s.k0) + "\n");
+  if (s.k_Hmax) add("k_Hmax = " + number(*s.k_Hmax) + "\n");
+  if (s.k_hmin) add("k_hmin = " + number(*s.k_hmin) + "\n");
+  if (s.Hmax_azimuth_deg) add("Hmax_azimuth_deg = " + number(*s.Hmax_azimuth_deg) + "\n");
+  const std::pair<const char*, const DepthRows*> tables[] = {{"Sv_density_kg_per_m3", &s.Sv_density_kg_per_m3},
+                                                              {"Sv_gradients_MPa_per_m", &s.Sv_gradients_MPa_per_m},
+                                                              {"Shmin_MPa", &s.Shmin_MPa},
+                                                              {"SHmax_MPa", &s.SHmax_MPa},
+                                                              {"overpressure_MPa", &s.overpressure_MPa}};
+  for (const auto& [key, rows] : tables) {
+    if (rows->empty()) continue;
+    std::string line = std::string(key) + " = [";
+    for (std::size_t i = 0; i < rows->size(); ++i)
+      line += (i ? ", [" : "[") + number((*rows)[i][0]) + ", " + number((*rows)[i][1]) + "]";
+    add(line + "]\n");
+  }
+  if (s.SHmax_over_Shmin) add("SHmax_over_Shmin = " + number(*s.SHmax_over_Shmin) + "\n");
+  if (!s.regime.empty()) add("regime = \"" + s.regime + "\"\n");
   return *this;
 }
 
@@ -98,6 +115,8 @@ CaseToml& CaseToml::pool(const Pool& p) {
   add("name = \"" + p.name + "\"\nmaterials = " + string_list(p.materials) + "\n");
   if (!p.aquifer_materials.empty()) add("aquifer_materials = " + string_list(p.aquifer_materials) + "\n");
   add("schedule = \"" + p.schedule + "\"\ncolumn = \"" + p.column + "\"\n");
+  if (p.gas_water_contact_m) add("gas_water_contact_m = " + number(*p.gas_water_contact_m) + "\n");
+  if (p.gas_density_kg_per_m3) add("gas_density_kg_per_m3 = " + number(*p.gas_density_kg_per_m3) + "\n");
   add(p.more);
   return *this;
 }

@@ -4,6 +4,7 @@
 // keys) written as given, then the sections in the order added, one blank line between them
 // (Layout::Spaced) or none (Layout::Compact). strata_toml.hpp builds ugs-meshgen's strata files alike.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -37,11 +38,18 @@ class TomlSections {
 // [initial_stress]. Gradients in MPa/m are written with four decimals where that is exact (0.0100,
 // 0.0226: as the thesis gives them), otherwise in their shortest form (0.00981); a field left empty
 // is not written (ugs-flow reads the surface elevation alone).
+// The tables by depth of the mechanical earth model are written as arrays of [depth_m, value] rows
+// (an empty table is not written); give lithostatic_gradient_MPa_per_m = std::nullopt with an S_v table.
+using DepthRows = std::vector<std::array<double, 2>>;
 struct InitialStress {
   std::optional<double> surface_elevation_m{};
   std::optional<double> lithostatic_gradient_MPa_per_m = 0.0226;
   std::optional<double> hydrostatic_gradient_MPa_per_m = 0.0100;
   std::optional<double> k0{};
+  std::optional<double> k_Hmax{}, k_hmin{}, Hmax_azimuth_deg{};
+  DepthRows Sv_density_kg_per_m3{}, Sv_gradients_MPa_per_m{}, Shmin_MPa{}, SHmax_MPa{}, overpressure_MPa{};
+  std::optional<double> SHmax_over_Shmin{};
+  std::string regime{};  // empty: not written
 };
 
 // [[material]]. `law` as the case file spells it (linear, elastic, hypoplastic; empty: not written,
@@ -84,6 +92,7 @@ struct Pool {
   std::string name{};
   std::vector<std::string> materials{}, aquifer_materials{};
   std::string schedule{}, column = "p_MPa";
+  std::optional<double> gas_water_contact_m{}, gas_density_kg_per_m3{};  // the pool's gas column
   std::string more{};  // further "key = value" lines as written
 };
 

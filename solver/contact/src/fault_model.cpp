@@ -154,13 +154,13 @@ ConstraintFrame constraint_frame(const Point3& n, std::uint8_t fixed1, std::uint
 
 InitialFaultState geostatic_fault_state(const mech::InitialState& init) {
   InitialFaultState s;
-  s.total_stress = [init](const Point3& x, double biot, const std::array<double, 2>& k) {
-    fem::Vec6 sig = init.effective_stress(x[2], biot, k);
-    const double p = init.pore_pressure(x[2]);
+  s.total_stress = [init](const Point3& x, double biot, const std::array<double, 2>& k, const GasColumn& gas) {
+    fem::Vec6 sig = init.effective_stress(x[2], biot, k, gas);
+    const double p = init.pore_pressure(x[2], gas);
     for (int k = 0; k < 3; ++k) sig[k] -= biot * p;
     return sig;
   };
-  s.pressure = [init](const Point3& x) { return init.pore_pressure(x[2]); };
+  s.pressure = [init](const Point3& x, const GasColumn& gas) { return init.pore_pressure(x[2], gas); };
   return s;
 }
 
@@ -280,13 +280,17 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
       (side == 0 ? el.tet1 : el.tet2) = found;
     }
   }
+  // (a Model made without build_model may lack the gas columns: water then)
+  auto gas_of = [&](std::int32_t mat) {
+    return static_cast<std::size_t>(mat) < model.material_gas.size() ? model.material_gas[mat] : GasColumn{};
+  };
   auto tet_info = [&](std::int64_t t, double face_area, double& k, double& biot) {
     const auto& tn = model.tets[t];
     const fem::Material& m = model.materials[model.tet_material[t]];
     const double zc = 0.25 * (model.x[tn[0]][2] + model.x[tn[1]][2] + model.x[tn[2]][2] + model.x[tn[3]][2]);
     fem::Mat6 D;
     if (m.law == fem::Law::Linear) D = m.D_linear;
-    else D = m.elastic_D(-model.initial.effective_stress(zc, m.biot)[fem::ZZ] * 1e-6);
+    else D = m.elastic_D(model.initial.effective_vertical_stress(zc, m.biot, gas_of(model.tet_material[t])) * 1e-6);
     const double E = std::max({D[0], D[7], D[14]});
     const double vol = std::abs(tet_signed_volume(model.x[tn[0]], model.x[tn[1]], model.x[tn[2]], model.x[tn[3]]));
     k = E / (3 * vol / face_area);
@@ -298,6 +302,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
   std::vector<V3> nsum;
   std::vector<double> ksum, bsum;
   std::vector<std::array<double, 2>> rsum;  // stress ratios (k_Hmax, k_hmin) of side 1, area-weighted
+  std::vector<std::map<std::int32_t, double>> side1_area;  // side-1 area by material (the pair's gas column)
   std::vector<std::map<std::uint32_t, char>> tips(fm.faults.size());
   for (const auto& el : elems) {
     double k1, k2, b1, b2;
@@ -328,6 +333,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
         ksum.push_back(0);
         bsum.push_back(0);
         rsum.push_back({0, 0});
+        side1_area.emplace_back();
       }
       const std::size_t q = it->second;
       const double a = el.area / 3;
@@ -338,6 +344,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
       bsum[q] += a * b1;
       const auto& r1 = model.material_k[model.tet_material[el.tet1]];
       rsum[q][0] += a * r1[0], rsum[q][1] += a * r1[1];
+      side1_area[q][model.tet_material[el.tet1]] += a;
     }
   }
   for (std::size_t fi = 0; fi < fm.faults.size(); ++fi) fm.faults[fi].tip_nodes = tips[fi].size();
@@ -356,7 +363,11 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
     p.active = cf.active;
     p.k = ksum[q] / p.area;
     const double biot = bsum[q] / p.area;
-    const fem::Vec6 s = init.total_stress(p.x, biot, {rsum[q][0] / p.area, rsum[q][1] / p.area});
+    std::int32_t mat1 = side1_area[q].begin()->first;  // the largest share (the first material on a tie)
+    for (const auto& [mat, a] : side1_area[q])
+      if (a > side1_area[q].at(mat1)) mat1 = mat;
+    const GasColumn gas = gas_of(mat1);
+    const fem::Vec6 s = init.total_stress(p.x, biot, {rsum[q][0] / p.area, rsum[q][1] / p.area}, gas);
     // Traction t = sigma n (thesis Voigt order xx yy zz yz xz xy), in the pair's frame. A held
     // tangent slot of a reduced frame is a prescribed direction: its traction is the support's
     // reaction, not the fault's, and is reported as 0 (it enters no equation but its own hold).
@@ -368,7 +379,7 @@ FaultModel build_fault_model(const Mesh& mesh, const CaseFile& cs, const mech::M
       if (reduced && p.active != 0 && j < 2 && !((p.active >> j) & 1)) p.lambda0[j] = 0;
     }
     if (reduced && p.active != 0) p.lambda0[2] = dot(n, t);  // the fault's normal traction
-    p.p0 = init.pressure(p.x);
+    p.p0 = init.pressure(p.x, gas);
     if (reduced) ++fm.boundary_pairs;
     if (!p.frictional()) ++fm.inactive_pairs;
     if (!dsu.unite(p.side1, p.side2)) {

@@ -9,8 +9,33 @@
 
 namespace ugs::driver {
 
+namespace {
+
+// The gas column of a material (water when the model has none recorded).
+const GasColumn& gas_of(const mech::Model& model, int material) {
+  static const GasColumn water{};
+  return static_cast<std::size_t>(material) < model.material_gas.size() ? model.material_gas[material] : water;
+}
+
+}  // namespace
+
 CaprockCheck::CaprockCheck(const mech::Model& model, const Mesh& mesh, const CaseFile& cs) : seals_(cs.seals) {
   if (seals_.empty()) return;
+  // A seal node's initial pore pressure: the highest of the elements around it, so that a gas cap
+  // under the seal (its pool's gas column) pushes on the seal's base with the gas pressure.
+  std::vector<char> seal_material(model.materials.size(), 0);
+  for (const SealSpec& s : seals_)
+    for (std::size_t m = 0; m < model.materials.size(); ++m)
+      if (model.materials[m].name == s.material) seal_material[m] = 1;
+  std::vector<char> on_seal(model.num_nodes(), 0);
+  for (std::size_t c = 0; c < model.tets.size(); ++c)
+    if (seal_material[model.tet_material[c]])
+      for (auto v : model.tets[c]) on_seal[v] = 1;
+  std::vector<double> node_p0(model.num_nodes(), -INFINITY);
+  for (std::size_t c = 0; c < model.tets.size(); ++c)
+    for (auto v : model.tets[c])
+      if (on_seal[v])
+        node_p0[v] = std::max(node_p0[v], model.initial.pore_pressure(model.x[v][2], gas_of(model, model.tet_material[c])));
   std::vector<std::uint32_t> local(model.num_nodes(), UINT32_MAX);
   for (std::size_t k = 0; k < seals_.size(); ++k) {
     const SealSpec& s = seals_[k];
@@ -32,12 +57,12 @@ CaprockCheck::CaprockCheck(const mech::Model& model, const Mesh& mesh, const Cas
       for (int j = 0; j < 4; ++j) {
         const std::uint32_t v = cell.nodes[j];
         const Point3& x = model.x[v];
-        cell.node_p0[j] = model.initial.pore_pressure(x[2]);
+        cell.node_p0[j] = node_p0[v];
         for (int d = 0; d < 3; ++d) cell.centroid[d] += 0.25 * x[d];
         if (local[v] == UINT32_MAX) local[v] = mesh_.add_node(x, mesh.node_tags[v]);
         n[j] = local[v];
       }
-      cell.p0 = model.initial.pore_pressure(cell.centroid[2]);
+      cell.p0 = model.initial.pore_pressure(cell.centroid[2], gas_of(model, mat));
       mesh_.add_element(block, n, model.tet_tags[c]);
       cells_.push_back(cell);
       ++count;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -44,26 +45,26 @@ struct UnionFind {
 };
 
 // Vertical uniaxial compressibility c_M [1/Pa] of a material at elevation z.
-double cm_per_pa(const CaseFile& c, const MaterialSpec& m, double z) {
+double cm_per_pa(const CaseFile& c, const InitialState& init, const MaterialSpec& m, double z) {
   if (m.law == MaterialLaw::Linear) {
     // Eq. 3.23 (eq. 3.21 when isotropic) with the given vertical Young's modulus.
     const double Ez = *m.E_Pa, nu_z = m.nu_z, nu_h = m.nu_z * m.nuh_over_nuz;
     return (1.0 - 2.0 * nu_z * nu_z / (1.0 - nu_h) * m.Eh_over_Ez) / Ez;
   }
   // Floored as in the mechanics: the law is singular at zero stress (near or above the surface).
-  const double sigma = std::max(initial_effective_vertical_stress(c.initial_stress, z), m.sigma_z_min_MPa * kMPa);
+  const double sigma = std::max(initial_effective_vertical_stress(c, init, m, z), m.sigma_z_min_MPa * kMPa);
   return CompressibilityLaw{m.cm_a, m.cm_b}.cm(sigma / kMPa) / kMPa;
 }
 
 }  // namespace
 
-double initial_effective_vertical_stress(const InitialStressSpec& s, double z) {
-  return (s.lithostatic_gradient - s.hydrostatic_gradient) * (s.surface_elevation - z);
+double initial_effective_vertical_stress(const CaseFile& c, const InitialState& init, const MaterialSpec& m, double z) {
+  return init.effective_vertical_stress(z, m.biot, gas_column_of(c, m.name));
 }
 
-double storage_coefficient(const CaseFile& c, const MaterialSpec& m, double z) {
+double storage_coefficient(const CaseFile& c, const InitialState& init, const MaterialSpec& m, double z) {
   if (!m.porosity) throw InputError(m.where, fmt::format("material '{}' has no porosity", m.name));
-  return *m.porosity * c.water_compressibility + cm_per_pa(c, m, z);
+  return *m.porosity * c.water_compressibility + cm_per_pa(c, init, m, z);
 }
 
 std::vector<double> FlowModel::conductance_values() const {
@@ -247,6 +248,24 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
     return static_cast<std::size_t>(std::lower_bound(b, e, j) - P.col.begin());
   };
 
+  // The initial state (c_M at its effective vertical stress), checked over the sub-mesh's depth, and
+  // each pool's gas-water contact against the top of its rock here.
+  double z_low = mesh.nodes.empty() ? 0.0 : mesh.nodes[0][2];
+  for (const auto& x : mesh.nodes) z_low = std::min(z_low, x[2]);
+  const InitialState init = initial_state_of(c, c.initial_stress.surface_elevation - z_low);
+  {
+    std::vector<double> top(fm.pools.size(), -std::numeric_limits<double>::infinity());
+    for (std::size_t bi = 0; bi < mesh.blocks.size(); ++bi)
+      if (block_material[bi] >= 0 && fm.materials[block_material[bi]].pool >= 0)
+        for (auto v : mesh.blocks[bi].nodes) {
+          double& t = top[fm.materials[block_material[bi]].pool];
+          t = std::max(t, mesh.nodes[v][2]);
+        }
+    for (std::size_t pi = 0; pi < fm.pools.size(); ++pi)
+      for (const auto& spec_pool : c.pools)
+        if (spec_pool.name == fm.pools[pi].name && std::isfinite(top[pi])) check_gas_contact(spec_pool, top[pi], init);
+  }
+
   // 7. Element conductance V grad N^T (K/gamma_w) grad N and lumped storage V s / 4.
   fm.conductance_by_material.assign(fm.materials.size(), {});
   for (std::size_t m = 0; m < fm.materials.size(); ++m)
@@ -288,7 +307,7 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
       for (int j = 0; j < 4; ++j)
         a[position(t.dof[i], t.dof[j])] += vol * (g[i][0] * kx * g[j][0] + g[i][1] * ky * g[j][1] + g[i][2] * kz * g[j][2]);
     const double zc = 0.25 * (x0[2] + x1[2] + x2[2] + x3[2]);
-    const double s = storage_coefficient(c, *spec[t.material], zc);
+    const double s = storage_coefficient(c, init, *spec[t.material], zc);
     if (!(s > 0) || !std::isfinite(s))
       throw InputError(spec[t.material]->where,
                        fmt::format("material '{}': specific storage gamma_w (n beta + c_M) = {:g} 1/m at z = {:g} m is not a "

@@ -101,8 +101,9 @@ std::vector<std::array<double, 3>> boundary_traction_forces(const Mesh& mesh, co
       std::array<std::array<double, 3>, 3> dt;
       for (int j = 0; j < 3; ++j) {
         const double z = model.x[tri[j]][2];
-        fem::Vec6 s = init.effective_stress(z, alpha, model.material_k[mat]);
-        const double p0 = init.pore_pressure(z);
+        const GasColumn gas = model.material_gas.size() > static_cast<std::size_t>(mat) ? model.material_gas[mat] : GasColumn{};
+        fem::Vec6 s = init.effective_stress(z, alpha, model.material_k[mat], gas);
+        const double p0 = init.pore_pressure(z, gas);
         for (int k = 0; k < 3; ++k) s[k] -= alpha * p0;
         // Thesis Voigt order xx yy zz yz xz xy.
         const std::array<double, 3> t0{s[0] * n[0] + s[5] * n[1] + s[4] * n[2], s[5] * n[0] + s[1] * n[1] + s[3] * n[2],

@@ -74,6 +74,30 @@ fem::Material get_material(Buffer& b) {
   return m;
 }
 
+// The initial state: its numbers, then its tables (which a POD copy would not carry).
+void put_initial(Buffer& b, const InitialState& s) {
+  b.put(std::vector<double>{s.surface_elevation, s.lithostatic, s.hydrostatic, s.k_Hmax, s.k_hmin, s.Hmax_azimuth_deg,
+                            s.sHmax_over_shmin});
+  b.put(s.sv_gradient);
+  b.put(s.sv_total);
+  b.put(s.shmin);
+  b.put(s.sHmax);
+  b.put(s.overpressure);
+}
+
+InitialState get_initial(Buffer& b) {
+  InitialState s;
+  const auto v = b.get<double>();
+  s.surface_elevation = v[0], s.lithostatic = v[1], s.hydrostatic = v[2], s.k_Hmax = v[3], s.k_hmin = v[4];
+  s.Hmax_azimuth_deg = v[5], s.sHmax_over_shmin = v[6];
+  s.sv_gradient = b.get<DepthValue>();
+  s.sv_total = b.get<double>();
+  s.shmin = b.get<DepthValue>();
+  s.sHmax = b.get<DepthValue>();
+  s.overpressure = b.get<DepthValue>();
+  return s;
+}
+
 void send_buffer(MPI_Comm comm, Buffer& b, int dest) {
   std::uint64_t n = b.bytes().size();
   MPI_Send(&n, 1, MPI_UINT64_T, dest, kTag, comm);
@@ -222,11 +246,13 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
       buf.put(owned);
       buf.put_value<std::uint64_t>(m.materials.size());
       for (const auto& mt : m.materials) put_material(buf, mt);
-      buf.put_value(m.initial);
-      // (a Model made without build_model may lack the per-material ratios: the global ones then)
+      put_initial(buf, m.initial);
+      // (a Model made without build_model may lack the per-material ratios and gas columns: the
+      // global ratios and water then)
       buf.put(m.material_k.size() == m.materials.size()
                   ? m.material_k
                   : std::vector<std::array<double, 2>>(m.materials.size(), {m.initial.k_Hmax, m.initial.k_hmin}));
+      buf.put(m.material_gas.size() == m.materials.size() ? m.material_gas : std::vector<GasColumn>(m.materials.size()));
       cells_of[p] = {};
     }
   }
@@ -254,8 +280,9 @@ LocalMesh distribute(MPI_Comm comm, const Model* model, PartitionMethod method) 
   lm.cell_owned = in.get<std::uint8_t>();
   const auto nm = in.get_value<std::uint64_t>();
   for (std::uint64_t k = 0; k < nm; ++k) lm.materials.push_back(get_material(in));
-  lm.initial = in.get_value<InitialState>();
+  lm.initial = get_initial(in);
   lm.material_k = in.get<std::array<double, 2>>();
+  lm.material_gas = in.get<GasColumn>();
   return lm;
 }
 

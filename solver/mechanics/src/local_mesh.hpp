@@ -32,6 +32,7 @@ struct LocalMesh {
   std::vector<fem::Material> materials;
   InitialState initial;
   std::vector<std::array<double, 2>> material_k;   // Model::material_k
+  std::vector<GasColumn> material_gas;             // Model::material_gas
 
   // Rank 0 only.
   std::vector<std::uint32_t> orig_of_global;               // mesh node index of each global node

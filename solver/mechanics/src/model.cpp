@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -52,19 +53,6 @@ std::string group_list(const Mesh& mesh) {
 }
 
 }  // namespace
-
-fem::Vec6 InitialState::effective_stress(double z, double biot) const { return effective_stress(z, biot, {k_Hmax, k_hmin}); }
-
-fem::Vec6 InitialState::effective_stress(double z, double biot, const std::array<double, 2>& k) const {
-  const double d = std::max(surface_elevation - z, 0.0);
-  const double sv = -(lithostatic - biot * hydrostatic) * d;
-  if (k[0] == k[1]) return {k[1] * sv, k[1] * sv, sv, 0, 0, 0};  // isotropic horizontally (k0): exactly as before
-  const double a = Hmax_azimuth_deg * M_PI / 180.0, sa = std::sin(a), ca = std::cos(a);
-  const double sH = k[0] * sv, sh = k[1] * sv;
-  return {sH * sa * sa + sh * ca * ca, sH * ca * ca + sh * sa * sa, sv, 0, 0, (sH - sh) * sa * ca};
-}
-
-double InitialState::pore_pressure(double z) const { return hydrostatic * std::max(surface_elevation - z, 0.0); }
 
 bool Model::has_hypoplastic() const {
   for (const auto& m : materials)
@@ -211,11 +199,27 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
     model.top_nodes.erase(std::unique(model.top_nodes.begin(), model.top_nodes.end()), model.top_nodes.end());
   }
 
+  // The initial state, its regime checked over the model's depth.
   const auto& is = cs.initial_stress;
-  model.initial = {is.surface_elevation, is.lithostatic_gradient, is.hydrostatic_gradient, is.kH(), is.kh(), is.Hmax_azimuth_deg};
+  double z_low = mesh.nodes[0][2];
+  for (const auto& p : mesh.nodes) z_low = std::min(z_low, p[2]);
+  model.initial = initial_state_of(cs, is.surface_elevation - z_low);
   for (const auto& m : model.materials) {
     const MaterialSpec& spec = *cs.material(m.name);
     model.material_k.push_back({spec.k_Hmax.value_or(is.kH()), spec.k_hmin.value_or(is.kh())});
+    model.material_gas.push_back(gas_column_of(cs, m.name));
+  }
+  // A gas-water contact must cut its pool or lie below it (then the whole pool holds gas).
+  for (const auto& pool : cs.pools) {
+    if (!pool.gas_water_contact_m) continue;
+    std::vector<char> in_pool(model.materials.size(), 0);
+    for (std::size_t m = 0; m < model.materials.size(); ++m)
+      in_pool[m] = std::find(pool.materials.begin(), pool.materials.end(), model.materials[m].name) != pool.materials.end();
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::size_t t = 0; t < model.tets.size(); ++t)
+      if (in_pool[model.tet_material[t]])
+        for (auto v : model.tets[t]) top = std::max(top, model.x[v][2]);
+    if (std::isfinite(top)) check_gas_contact(pool, top, model.initial);
   }
   model.traction_force = boundary_traction_forces(mesh, cs, model);
   return model;

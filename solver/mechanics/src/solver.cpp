@@ -138,7 +138,8 @@ std::vector<double> MechanicsSolver::gather_cell_field(CellField field) {
       }
       const auto& t = lm.cells[c];
       const double zc = 0.25 * (lm.x[t[0]][2] + lm.x[t[1]][2] + lm.x[t[2]][2] + lm.x[t[3]][2]);
-      const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]]);
+      const Vec6 s0 = lm.initial.effective_stress(zc, m.biot, lm.material_k[lm.cell_material[c]],
+                                                  lm.material_gas[lm.cell_material[c]]);
       Vec6 tot;
       for (int j = 0; j < 6; ++j) tot[j] = s0[j] + ds[j];
       const auto v = fem::stress_to_output(tot);

@@ -19,7 +19,7 @@ void MechanicsSolver::Impl::setup_elements() {
       }
       const fem::Material& m = lm.materials[lm.cell_material[c]];
       const double zc = 0.25 * (lm.x[t[0]][2] + lm.x[t[1]][2] + lm.x[t[2]][2] + lm.x[t[3]][2]);
-      s0[c] = -lm.initial.effective_stress(zc, m.biot)[ZZ] * 1e-6;
+      s0[c] = lm.initial.effective_vertical_stress(zc, m.biot, lm.material_gas[lm.cell_material[c]]) * 1e-6;
       if (m.law == fem::Law::Elastic) inv_c0[c] = 1e6 / m.hypo.cm(s0[c]);
       if (m.law == fem::Law::Hypoplastic) {
         hyp.of_cell[c] = static_cast<std::int32_t>(hyp.cells.size());

@@ -50,6 +50,21 @@ struct PoolSpec {
   std::string schedule;                // CSV path, resolved against the case file
   std::string column = "p_norm";       // p_norm (normalized) or p_MPa
   std::optional<double> reference_pressure_Pa;  // needed for normalized schedules
+  // Gas column (docs/case-file.md): above the gas-water contact (an elevation, m), inside this
+  // pool's materials, the initial pore pressure follows the gas gradient up from the water
+  // pressure at the contact. Absent: the pool's rock holds water at the initial state.
+  std::optional<double> gas_water_contact_m;
+  double gas_gradient_Pa_per_m = 0.0;  // rho_gas g (gas_density_kg_per_m3 or gas_gradient_MPa_per_m)
+};
+
+// The acceleration of gravity [m/s2] that turns densities (kg/m3) into gradients (Pa/m): the value
+// behind the default water unit weight, 9810 N/m3 = 1000 kg/m3 x 9.81 m/s2.
+inline constexpr double kGravity = 9.81;
+
+// One row of a table by depth of [initial_stress]: depth below surface_elevation_m [m], value (SI).
+struct DepthValue {
+  double depth = 0;
+  double value = 0;
 };
 
 struct InitialStressSpec {
@@ -63,6 +78,27 @@ struct InitialStressSpec {
   double Hmax_azimuth_deg = 0.0;
   double kH() const { return k_Hmax.value_or(k0); }
   double kh() const { return k_hmin.value_or(k0); }
+
+  // Mechanical earth model: tables by depth (docs/case-file.md, "Tables by depth"; formulas in
+  // docs/theory.md). Each is empty when not given, and the gradients above then hold.
+  // Total vertical stress gradient [Pa/m] by depth, linear between rows (two rows at one depth: a
+  // step), the first row's value above it, the last row's below it; S_v is its integral from the
+  // surface. From Sv_density_kg_per_m3 (rho g) or Sv_gradients_MPa_per_m (a step per interval).
+  std::vector<DepthValue> sv_gradient;
+  // Total S_hmin [Pa] at depths (leak-off tests, minifracs), linear between rows, S d / d_row (the
+  // row's own gradient) above the first row and below the last. Given: the horizontal stresses
+  // are the table's, not k ratios.
+  std::vector<DepthValue> shmin;
+  // Total S_Hmax: a table like shmin, or the ratio S_Hmax / S_hmin (1 when neither is given).
+  std::vector<DepthValue> sHmax;
+  std::optional<double> sHmax_over_shmin;
+  // Overpressure [Pa] added to the hydrostatic pore pressure, linear between rows, the first row's
+  // value above it and the last row's below it.
+  std::vector<DepthValue> overpressure;
+  // Stress regime the tables must honour at every depth of the model: "" (not checked), "normal"
+  // (S_hmin <= S_Hmax <= S_v), "strike-slip" (S_hmin <= S_v <= S_Hmax), "reverse" (S_v <= S_hmin <= S_Hmax).
+  std::string regime;
+  bool horizontal_table() const { return !shmin.empty(); }
 };
 
 // [[boundary_traction]]: the total traction (sigma n, n the outward normal, tension positive) on the

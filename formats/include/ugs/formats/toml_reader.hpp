@@ -47,6 +47,10 @@ public:
   bool boolean_or(const std::string& key, bool fallback) const;
   std::vector<double> numbers(const std::string& key) const;
   std::vector<std::string> strings(const std::string& key) const;
+  // A table of numbers written as an array of rows ([[0, 2000], [500, 2300]]), each `width` long;
+  // `row_where` (if given) gets "file:line" of each row, for messages naming the row.
+  std::vector<std::vector<double>> number_rows(const std::string& key, std::size_t width,
+                                               std::vector<std::string>* row_where = nullptr) const;
   std::optional<TomlTable> table_opt(const std::string& key) const;
   TomlTable table(const std::string& key) const;
   // An array of tables ([[name]]); empty if absent.

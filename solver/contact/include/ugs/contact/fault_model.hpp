@@ -90,10 +90,12 @@ struct FaultModel {
 
 // Initial state of the faults: total stress (thesis Voigt order, Pa, tension positive) and fluid
 // pressure at a point; `biot` and `k` (the effective stress ratios k_Hmax, k_hmin) are those of the
-// rock on side 1 (the hanging wall), area-weighted over the pair's elements where it changes.
+// rock on side 1 (the hanging wall), area-weighted over the pair's elements where it changes;
+// `gas` is the gas column of the side-1 material with the largest share of the pair's area (the
+// pore fluid of a pair in a pool's gas cap is gas).
 struct InitialFaultState {
-  std::function<fem::Vec6(const Point3& x, double biot, const std::array<double, 2>& k)> total_stress;
-  std::function<double(const Point3& x)> pressure;
+  std::function<fem::Vec6(const Point3& x, double biot, const std::array<double, 2>& k, const GasColumn& gas)> total_stress;
+  std::function<double(const Point3& x, const GasColumn& gas)> pressure;
 };
 
 // The geostatic state of the case (mech::InitialState): sigma = sigma' - biot p0 I, p = p0.

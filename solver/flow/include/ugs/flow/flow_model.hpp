@@ -22,6 +22,7 @@
 
 #include "ugs/formats/case_file.hpp"
 #include "ugs/formats/mesh.hpp"
+#include "ugs/solver/initial_state.hpp"
 
 namespace ugs::flow {
 
@@ -81,9 +82,11 @@ struct FlowModelOptions {
 // Specific storage divided by gamma_w, s = n beta + c_M [1/Pa], of a material at the elevation z
 // (c_M from the material's law at the initial effective vertical stress there, floored at
 // sigma_z_min_MPa; eq. 3.23 for law = "linear"; docs/flow.md).
-double storage_coefficient(const CaseFile& c, const MaterialSpec& m, double z);
-// Initial effective vertical stress magnitude [Pa] at elevation z (compression positive).
-double initial_effective_vertical_stress(const InitialStressSpec& s, double z);
+// `init` is the case's initial state (initial_state_of), as ugs-solve's.
+double storage_coefficient(const CaseFile& c, const InitialState& init, const MaterialSpec& m, double z);
+// Initial effective vertical stress magnitude [Pa] at elevation z (compression positive) in the
+// material m: S_v - biot p0 with the material's Biot coefficient and gas column, as the mechanics'.
+double initial_effective_vertical_stress(const CaseFile& c, const InitialState& init, const MaterialSpec& m, double z);
 
 // Builds the model; InputError for materials without conductivity or porosity, pool materials
 // missing from the mesh, nodes claimed by two pools, or interface elements in the mesh.

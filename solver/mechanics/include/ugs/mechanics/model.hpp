@@ -11,28 +11,12 @@
 #include "ugs/fem/material_point.hpp"
 #include "ugs/formats/case_file.hpp"
 #include "ugs/formats/mesh.hpp"
+#include "ugs/solver/initial_state.hpp"
 
 namespace ugs::mech {
 
-// Geostatic initial state (in equilibrium, taken as the reference): with depth d = z_s - z,
-//   p0 = gamma_hyd d,  sigma'_v0 = -(gamma_lith - alpha gamma_hyd) d,
-//   sigma'_0 = sigma'_v0 (k_Hmax s s^T + k_hmin h h^T + e_z e_z^T),
-// s = (sin a, cos a, 0) the direction of sigma'_Hmax (a clockwise from +y, north), h = (cos a, -sin a, 0).
-struct InitialState {
-  double surface_elevation = 0;  // m
-  double lithostatic = 0.0226e6; // Pa/m
-  double hydrostatic = 0.0100e6; // Pa/m
-  double k_Hmax = 1.0;           // sigma'_Hmax / sigma'_v
-  double k_hmin = 1.0;           // sigma'_hmin / sigma'_v
-  double Hmax_azimuth_deg = 0.0; // degrees clockwise from +y
-
-  // Initial effective stress (thesis Voigt order, Pa, tension positive) at elevation z.
-  fem::Vec6 effective_stress(double z, double biot) const;
-  // The same with a material's own ratios k = {k_Hmax, k_hmin} (Model::material_k); sigma'_v(z) and
-  // the azimuth are the global ones: sigma'_v depends on the gradients and the Biot coefficient only.
-  fem::Vec6 effective_stress(double z, double biot, const std::array<double, 2>& k) const;
-  double pore_pressure(double z) const;
-};
+// The geostatic initial state (ugs/solver/initial_state.hpp): the case's mechanical earth model.
+using ugs::InitialState;
 
 struct Model {
   std::vector<Point3> x;                           // node coordinates, mesh order
@@ -49,6 +33,9 @@ struct Model {
   // Per material: {k_Hmax, k_hmin} of its elements' initial stress ([[material]] k0 / k_Hmax / k_hmin,
   // else the [initial_stress] ones).
   std::vector<std::array<double, 2>> material_k;
+  // Per material: the gas column of the pool holding it (GasColumn{}: water), for the initial pore
+  // pressure of its elements.
+  std::vector<GasColumn> material_gas;
   // Per mesh node: the consistent nodal force [N] of the [[boundary_traction]] entries, the change of
   // the boundary traction from the initial state's sigma_0 n (boundary_traction.cpp); a constant load.
   std::vector<std::array<double, 3>> traction_force;
