@@ -483,11 +483,13 @@ void read_materials_and_pools(const TomlTable& root, CaseFile& c, const Collect&
   for (const auto& p : c.pools)
     if (p.gas_water_contact_m)
       for (const auto& m : p.materials)
-        if (const auto [it, fresh] = gas_pool.emplace(m, &p); !fresh)
+        if (const auto placed = gas_pool.emplace(m, &p); !placed.second) {
+          const std::string other = placed.first->second->name;  // (a structured binding: not capturable in C++17 clang)
           ok([&] {
             throw InputError(p.where, fmt::format("pool '{}': material '{}' is also in pool '{}', and both have a gas column (a "
-                                                  "rock has one gas-water contact)", p.name, m, it->second->name));
+                                                  "rock has one gas-water contact)", p.name, m, other));
           });
+        }
   for (const auto& p : c.pools)
     for (const auto& list : {p.materials, p.aquifer_materials})
       for (const auto& m : list)

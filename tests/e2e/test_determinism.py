@@ -146,8 +146,11 @@ def main():
     # (Not MUMPS: its parallel factorization schedules fronts dynamically, by the processes' measured
     # load, so the order of its sums follows message timing: round-off differences, docs/cli.md.)
     solve = os.path.join(build, "tools", "ugs-solve", "ugs-solve")
+    # Both runs write to the same path (then moved aside): the CSVs' comments hold the command line.
     mpi = [os.path.join(work, "mpi1"), os.path.join(work, "mpi2")]
-    for i, d in enumerate(mpi):
+    d = os.path.join(work, "mpi")
+    for i, dest in enumerate(mpi):
+        shutil.rmtree(dest, ignore_errors=True)
         shutil.rmtree(d, ignore_errors=True)
         os.makedirs(d)
         cmd = ["mpirun", "-n", "2", solve, os.path.join(run1, "model.msh"), "--case", "case.toml",
@@ -159,6 +162,7 @@ def main():
               + ("" if code == 0 else f": {se.strip()[-2000:]}"))
         if code != 0:
             return
+        os.rename(d, dest)
     compare_trees(mpi[0], mpi[1], "2 processes")
 
 

@@ -228,14 +228,15 @@ struct ClosedForm {
 };
 
 // Largest relative errors of the pairs' tractions and p0 (err) and of chi (chi_err) against cf.
+// Depth d = surface - z (the case's surface_elevation_m, 0 unless a test puts the box under an overburden).
 void compare_with_closed_form(const contact::FaultModel& fm, const FaultCase& f, const ClosedForm& cf, double& err,
-                              double& chi_err, double& p_min, double& p_max) {
+                              double& chi_err, double& p_min, double& p_max, double surface = 0) {
   const Point3 plane = unit_normal(f);
   const double mu = std::tan(30 * M_PI / 180);
   err = chi_err = 0;
   p_min = 1e300, p_max = -1e300;
   for (const auto& p : fm.pairs) {
-    const double d = -p.x[2], p0 = cf.p0(d);
+    const double d = surface - p.x[2], p0 = cf.p0(d);
     const M3 S = cf.S(d, p0);
     double Sn[3];
     for (int i = 0; i < 3; ++i) Sn[i] = S[i][0] * plane[0] + S[i][1] * plane[1] + S[i][2] * plane[2];
@@ -299,8 +300,12 @@ TEST(InsituEarthModel, FaultInTheGasCap) {
   cs.initial_stress.k_Hmax.reset();
   cs.initial_stress.k_hmin.reset();
   cs.initial_stress.Hmax_azimuth_deg = f.azimuth;
-  // S_hmin from two leak-off points (the fault lies between them and above the first), S_Hmax = 1.2 S_hmin.
-  cs.initial_stress.shmin = {{200, 3.6e6}, {400, 7.8e6}};
+  // The box under 300 m of overburden: the pool (the whole box) then tops out at 300 m depth, where
+  // its gas (5.06 MPa) stays below S_v (6.78 MPa); a gas column reaching the ground is refused.
+  const double zs = 300;
+  cs.initial_stress.surface_elevation = zs;
+  // S_hmin from two leak-off points (the fault, 450-650 m deep, lies between them), S_Hmax = 1.2 S_hmin.
+  cs.initial_stress.shmin = {{400, 8.0e6}, {700, 14.0e6}};
   cs.initial_stress.sHmax_over_shmin = 1.2;
   PoolSpec pool;
   pool.name = "store";
@@ -316,12 +321,12 @@ TEST(InsituEarthModel, FaultInTheGasCap) {
   ASSERT_GT(fm.pairs.size(), 20u);
   const double alpha = 0.9, a = f.azimuth * M_PI / 180;
   ClosedForm cf;
-  cf.p0 = [](double d) {
-    const double z = -d;
-    return z > -250 ? 0.0100e6 * 250 - 180 * 9.81 * (z + 250) : 0.0100e6 * d;
+  cf.p0 = [&](double d) {
+    const double z = zs - d;
+    return z > -250 ? 0.0100e6 * (zs + 250) - 180 * 9.81 * (z + 250) : 0.0100e6 * d;
   };
   cf.S = [&](double d, double p) {
-    const double sh = d <= 200 ? 3.6e6 * d / 200 : d >= 400 ? 7.8e6 * d / 400 : 3.6e6 + 4.2e6 * (d - 200) / 200;
+    const double sh = d <= 400 ? 8.0e6 * d / 400 : d >= 700 ? 14.0e6 * d / 700 : 8.0e6 + 6.0e6 * (d - 400) / 300;
     const double sH = 1.2 * sh, sv = 0.0226e6 * d;
     const double s[3] = {std::sin(a), std::cos(a), 0}, h[3] = {std::cos(a), -std::sin(a), 0};
     M3 S{};
@@ -332,7 +337,7 @@ TEST(InsituEarthModel, FaultInTheGasCap) {
     return S;
   };
   double err, chi_err, excess_min, excess_max;
-  compare_with_closed_form(fm, f, cf, err, chi_err, excess_min, excess_max);
+  compare_with_closed_form(fm, f, cf, err, chi_err, excess_min, excess_max, zs);
   std::printf("gas cap: %zu pairs, p0 - hydrostatic %.3f to %.3f MPa, worst relative error %.2e, chi %.2e\n", fm.pairs.size(),
               excess_min * 1e-6, excess_max * 1e-6, err, chi_err);
   EXPECT_LT(err, 1e-9);
