@@ -9,12 +9,6 @@
 
 namespace ugs::report {
 
-std::string wanted_stress_pool(const Context& c) {
-  if (!c.opt.stress_pool.empty()) return c.opt.stress_pool;
-  if (c.cs && c.cs->report && !c.cs->report->stress_pool.empty()) return c.cs->report->stress_pool;
-  return "Pool C";  // the thesis' storage pool; a case without it falls back to its last pool
-}
-
 void build_acceptance(Context& c) {
   if (!c.cs || !c.cs->report) return;
   const ReportSpec& r = *c.cs->report;

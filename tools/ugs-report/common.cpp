@@ -32,6 +32,12 @@ bool write_pressures(Context& c, std::string& label) {
   return true;
 }
 
+std::string wanted_stress_pool(const Context& c) {
+  if (!c.opt.stress_pool.empty()) return c.opt.stress_pool;
+  if (c.cs && c.cs->report && !c.cs->report->stress_pool.empty()) return c.cs->report->stress_pool;
+  return "Pool C";  // the thesis' storage pool; a case without it falls back to its last pool
+}
+
 std::string Phase::label() const { return fmt::format("{} {} to {}", name, format_iso_date(start), format_iso_date(end)); }
 
 std::string jstr(const std::string& s) {
