@@ -10,6 +10,7 @@
 #include "ugs/formats/csv.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/insar/displacement.hpp"
+#include "ugs/meshing/geodata.hpp"
 
 namespace ugs::report {
 
@@ -36,6 +37,17 @@ std::string wanted_stress_pool(const Context& c) {
   if (!c.opt.stress_pool.empty()) return c.opt.stress_pool;
   if (c.cs && c.cs->report && !c.cs->report->stress_pool.empty()) return c.cs->report->stress_pool;
   return "Pool C";  // the thesis' storage pool; a case without it falls back to its last pool
+}
+
+std::vector<SectionLine> section_lines(const Context& c) {
+  std::vector<SectionLine> out;
+  if (c.opt.sections.empty()) return out;
+  const auto vec = geo::read_vector(c.opt.sections, c.crs_wkt, c.opt.sections_where);
+  for (const auto& f : vec.features)
+    for (const auto& line : f.lines)
+      out.push_back({f.text_of("name").value_or(fmt::format("section {}", f.fid)), f.text_of("from_label").value_or(""),
+                     f.text_of("to_label").value_or(""), {line.begin(), line.end()}});
+  return out;
 }
 
 std::string Phase::label() const { return fmt::format("{} {} to {}", name, format_iso_date(start), format_iso_date(end)); }

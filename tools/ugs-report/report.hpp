@@ -113,6 +113,14 @@ std::string mm(double v);  // "3.21"
 // (written once); false without a case or pools. `label`: the axis label.
 bool write_pressures(Context& c, std::string& label);
 
+// The lines of --sections (none without it), in file order: name (else "section <fid>"), the
+// polyline in the model CRS and the labels of its ends.
+struct SectionLine {
+  std::string name, from, to;
+  std::vector<std::array<double, 2>> polyline;
+};
+std::vector<SectionLine> section_lines(const Context& c);
+
 // The nodes of each pool's materials (tetrahedra of mat:<name>); empty without a mesh or a case.
 using PoolNodes = std::vector<std::pair<std::string, std::vector<Point3>>>;
 PoolNodes pool_nodes(const Context& c);

@@ -15,7 +15,6 @@
 #include "ugs/formats/error.hpp"
 #include "ugs/insar/npy.hpp"
 #include "ugs/insar/sections.hpp"
-#include "ugs/meshing/geodata.hpp"
 
 namespace ugs::report {
 
@@ -109,19 +108,13 @@ void build_seal_pictures(Context& c) {
     std::string from, to;
   };
   std::vector<Slice> slices;
-  if (!c.opt.sections.empty()) {
-    const auto vec = geo::read_vector(c.opt.sections, c.crs_wkt, c.opt.sections_where);
-    for (const auto& f : vec.features)
-      for (const auto& line : f.lines) {
-        const std::string name = f.text_of("name").value_or(fmt::format("section {}", f.fid));
-        Slice s{insar::slice_tets(x, tets, name, {line.begin(), line.end()}, zlo - 20, zhi + 20), f.text_of("from_label").value_or(""),
-                f.text_of("to_label").value_or("")};
-        if (s.slice.cell.empty()) continue;  // the section misses the seal
-        const std::string stem = "seal_sec_" + slug(name);
-        insar::write_npy(c.work_file(stem + "_sz.npy"), s.slice.sz, {s.slice.sz.size() / 2, 2});
-        insar::write_npy(c.work_file(stem + "_off.npy"), s.slice.offsets, {s.slice.offsets.size()});
-        slices.push_back(std::move(s));
-      }
+  for (const SectionLine& line : section_lines(c)) {
+    Slice s{insar::slice_tets(x, tets, line.name, line.polyline, zlo - 20, zhi + 20), line.from, line.to};
+    if (s.slice.cell.empty()) continue;  // the section misses the seal
+    const std::string stem = "seal_sec_" + slug(line.name);
+    insar::write_npy(c.work_file(stem + "_sz.npy"), s.slice.sz, {s.slice.sz.size() / 2, 2});
+    insar::write_npy(c.work_file(stem + "_off.npy"), s.slice.offsets, {s.slice.offsets.size()});
+    slices.push_back(std::move(s));
   }
   for (const Margin& m : margins) {
     std::vector<double> v = r.cell_field(step, m.field).values;

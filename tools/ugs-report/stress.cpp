@@ -14,7 +14,6 @@
 #include "ugs/insar/inputs.hpp"
 #include "ugs/insar/npy.hpp"
 #include "ugs/insar/sections.hpp"
-#include "ugs/meshing/geodata.hpp"
 
 namespace ugs::report {
 
@@ -141,24 +140,19 @@ void build_stress(Context& c) {
   };
   std::vector<Section> sections;
   if (!c.opt.sections.empty()) {
-    const auto vec = geo::read_vector(c.opt.sections, c.crs_wkt, c.opt.sections_where);
-    for (const auto& f : vec.features) {
-      for (const auto& line : f.lines) {
-        std::vector<std::array<double, 2>> pl(line.begin(), line.end());
-        const std::string name = f.text_of("name").value_or(fmt::format("section {}", f.fid));
-        Section s{insar::slice_tets(x, tets, name, pl, zmin, zmax), f.text_of("from_label").value_or(""),
-                  f.text_of("to_label").value_or("")};
-        if (s.slice.cell.empty()) {
-          c.notes.push_back(zmin > -1e299 ? fmt::format("section {} does not cross the model in z {:.0f} .. {:.0f}", name, zmin, zmax)
-                                          : fmt::format("section {} does not cross the model", name));
-          continue;
-        }
-        const std::string stem = "sec_" + slug(name);
-        std::vector<double> sz = s.slice.sz;
-        insar::write_npy(c.work_file(stem + "_sz.npy"), sz, {sz.size() / 2, 2});
-        insar::write_npy(c.work_file(stem + "_off.npy"), s.slice.offsets, {s.slice.offsets.size()});
-        sections.push_back(std::move(s));
+    for (const SectionLine& line : section_lines(c)) {
+      const std::string& name = line.name;
+      Section s{insar::slice_tets(x, tets, name, line.polyline, zmin, zmax), line.from, line.to};
+      if (s.slice.cell.empty()) {
+        c.notes.push_back(zmin > -1e299 ? fmt::format("section {} does not cross the model in z {:.0f} .. {:.0f}", name, zmin, zmax)
+                                        : fmt::format("section {} does not cross the model", name));
+        continue;
       }
+      const std::string stem = "sec_" + slug(name);
+      std::vector<double> sz = s.slice.sz;
+      insar::write_npy(c.work_file(stem + "_sz.npy"), sz, {sz.size() / 2, 2});
+      insar::write_npy(c.work_file(stem + "_off.npy"), s.slice.offsets, {s.slice.offsets.size()});
+      sections.push_back(std::move(s));
     }
   } else {
     c.notes.push_back("no section lines (--sections): section pictures skipped");
