@@ -443,7 +443,6 @@ private:
                               cap.shear.margin_Pa * 1e-6);
           if (R.caprock_out) R.caprock_out->add(date, time, cap, steps_.output[i]);
         }
-        critical_before_ = before_.critical;
         R.out->write_step(date, time, u, steps_.output[i], *R.history);
       });
       if (steps_.output[i])
@@ -471,7 +470,7 @@ private:
       ++sum_.steps;
       if (rank_ == 0 && o_.progress) o_.progress(i + 1, n);
     }
-    int cb = critical_before_ ? 1 : 0;
+    int cb = before_.critical ? 1 : 0;  // (before_ is rank 0's)
     MPI_Bcast(&cb, 1, MPI_INT, 0, comm_);
     critical_before_ = cb != 0;
   }
@@ -510,23 +509,28 @@ private:
     MPI_Bcast(&c, 1, MPI_INT, 0, comm_);
     w.critical = c != 0;
     mech::collective(comm_, [&] {
-      if (rank_ != 0) return;
-      table->number(s, 6).number(w.max_chi, 6).integer(w.critical ? 1 : 0).text(w.fault).text(w.date);
-      table->number(w.at[0], 2).number(w.at[1], 2).number(w.at[2], 2);
-      table->number(w.dp_max * 1e-6, 4).number(w.dp_min * 1e-6, 4);
-      table->text(limiter_text(w.limiter)).text(w.seal);
-      if (caprock()) table->number(w.min_tensile_margin * 1e-6, 4).number(w.min_shear_margin * 1e-6, 4);
-      else table->text("").text("");
-      table->text(note).end_row();
+      if (rank_ == 0) scenario_row(*table, s, w, note);
     });
     std::string seen = faulted() ? fmt::format("max chi {:.4f}", w.max_chi) : "";
     if (caprock())
       seen += fmt::format("{}smallest seal margins {:.3f} MPa (tensile), {:.3f} MPa (shear)", seen.empty() ? "" : ", ",
                           w.min_tensile_margin * 1e-6, w.min_shear_margin * 1e-6);
-    log(0, fmt::format("scale {:.4g}: {}{}", s, seen,
-                       w.critical ? fmt::format(" — critical: {} on {}", w.what().empty() ? "Newton failed" : w.what(), w.date)
-                                  : ""));
+    log(0, fmt::format("scale {:.4g}: {}{}", s, seen, w.critical ? fmt::format(" — critical: {} on {}", failure_text(w), w.date) : ""));
     return w;
+  }
+
+  // What failed in a critical trial, for the log ("Newton failed" when nothing did before Newton).
+  static std::string failure_text(const Watch& w) { return w.what().empty() ? "Newton failed" : w.what(); }
+
+  // One row of the search's table (rank 0): the trial at scale s and what it saw.
+  void scenario_row(CsvWriter& table, double s, const Watch& w, const std::string& note) const {
+    table.number(s, 6).number(w.max_chi, 6).integer(w.critical ? 1 : 0).text(w.fault).text(w.date);
+    table.number(w.at[0], 2).number(w.at[1], 2).number(w.at[2], 2);
+    table.number(w.dp_max * 1e-6, 4).number(w.dp_min * 1e-6, 4);
+    table.text(limiter_text(w.limiter)).text(w.seal);
+    if (caprock()) table.number(w.min_tensile_margin * 1e-6, 4).number(w.min_shear_margin * 1e-6, 4);
+    else table.text("").text("");
+    table.text(note).end_row();
   }
 
   // 6. The safe-scale search (faulted runs that ask for it): reruns from the reference state.
@@ -553,15 +557,9 @@ private:
       std::string what;
       mech::collective(comm_, [&] {
         if (rank_ != 0) return;
-        const Watch& w = before_;
-        what = fmt::format("{} on {}", w.what(), w.date);
-        // One row, the base run's: critical before any scaling.
-        table->number(set_.scale, 6).number(w.max_chi, 6).integer(1).text(w.fault).text(w.date);
-        table->number(w.at[0], 2).number(w.at[1], 2).number(w.at[2], 2).number(0.0, 4).number(0.0, 4);
-        table->text(limiter_text(w.limiter)).text(w.seal);
-        if (caprock()) table->number(w.min_tensile_margin * 1e-6, 4).number(w.min_shear_margin * 1e-6, 4);
-        else table->text("").text("");
-        table->text("before or at the reference date: no scale of the later swing is safe").end_row();
+        what = fmt::format("{} on {}", before_.what(), before_.date);
+        // One row, the base run's: critical before any scaling (its pressure extremes are not tracked: 0).
+        scenario_row(*table, set_.scale, before_, "before or at the reference date: no scale of the later swing is safe");
       });
       log(-1, fmt::format("{} (before or at the reference date): no scale of the later swing is safe", what));
     } else {
@@ -569,8 +567,8 @@ private:
       if (safe.found)
         log(0, fmt::format("maximum safe scale {:.4g} (critical at {:.4g}: {} on {} at ({:.0f}, "
                            "{:.0f}, {:.0f})); the pressure change then peaks at {:+.3f} MPa / {:+.3f} MPa",
-                           safe.safe, safe.critical, safe.what.empty() ? "Newton failed" : safe.what, safe.date, safe.at[0],
-                           safe.at[1], safe.at[2], safe.peak_dp_max * 1e-6, safe.peak_dp_min * 1e-6));
+                           safe.safe, safe.critical, failure_text(safe.first), safe.first.date, safe.first.at[0],
+                           safe.first.at[1], safe.first.at[2], safe.peak_dp_max * 1e-6, safe.peak_dp_min * 1e-6));
       else
         log(0, fmt::format("no {} up to scale {:.4g} (max_scale)",
                            faulted() && caprock() ? "fault patch reaches chi = 1 and no seal fails"

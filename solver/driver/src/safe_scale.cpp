@@ -71,12 +71,7 @@ SafeScale search_safe_scale(double max_scale, double tolerance, const std::funct
     }
     safe.found = true;
     safe.critical = hi;
-    safe.limiter = hi_w.limiter;
-    safe.fault = hi_w.fault;
-    safe.seal = hi_w.seal;
-    safe.what = hi_w.what();
-    safe.date = hi_w.date;
-    safe.at = hi_w.at;
+    safe.first = hi_w;
   }
   safe.safe = lo;
   safe.peak_dp_max = lo_w.dp_max;

@@ -43,10 +43,7 @@ struct Watch {
 struct SafeScale {
   bool found = false;                  // a critical scale below max_scale
   double safe = 0, critical = 0;       // largest safe and smallest critical scale tried
-  Limiter limiter = Limiter::None;     // what fails first at `critical`
-  std::string fault, seal, date;       // the fault patch or seal element that fails first there
-  Point3 at{};
-  std::string what;                    // Watch::what() at `critical`
+  Watch first;                         // the trial at `critical`: what fails first, where and when
   double peak_dp_max = 0, peak_dp_min = 0;  // pressure change extremes after the reference at `safe` [Pa]
 };
 
