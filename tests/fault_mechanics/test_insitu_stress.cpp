@@ -133,6 +133,17 @@ CaseFile faulted_case() {
 
 }  // namespace
 
+// The normal traction sigma_n and the shear traction's magnitude tau of S on the plane of unit normal n.
+struct PlaneTraction {
+  double sn, tau;
+};
+PlaneTraction on_plane(const M3& S, const Point3& n) {
+  double Sn[3];
+  for (int i = 0; i < 3; ++i) Sn[i] = S[i][0] * n[0] + S[i][1] * n[1] + S[i][2] * n[2];
+  const double sn = Sn[0] * n[0] + Sn[1] * n[1] + Sn[2] * n[2];
+  return {sn, std::sqrt(std::pow(Sn[0] - sn * n[0], 2) + std::pow(Sn[1] - sn * n[1], 2) + std::pow(Sn[2] - sn * n[2], 2))};
+}
+
 // Largest error of the pairs' initial tractions against the hand formula with ratios kH, kh; also
 // the largest tau / |sigma_n| seen (the tensor must put shear on the plane).
 double worst_traction_error(const contact::FaultModel& fm, const mech::Model& model, const FaultCase& f, double kH, double kh,
@@ -147,11 +158,7 @@ double worst_traction_error(const contact::FaultModel& fm, const mech::Model& mo
     const double d = -p.x[2], alpha = 0.9, p0 = is.hydrostatic * d;
     M3 S = hand_effective(-(is.lithostatic - alpha * is.hydrostatic) * d, kH, kh, f.azimuth);
     for (int k = 0; k < 3; ++k) S[k][k] -= alpha * p0;
-    double Sn[3];
-    for (int i = 0; i < 3; ++i) Sn[i] = S[i][0] * plane[0] + S[i][1] * plane[1] + S[i][2] * plane[2];
-    const double sn = Sn[0] * plane[0] + Sn[1] * plane[1] + Sn[2] * plane[2];
-    const double tau = std::sqrt(std::pow(Sn[0] - sn * plane[0], 2) + std::pow(Sn[1] - sn * plane[1], 2) +
-                                 std::pow(Sn[2] - sn * plane[2], 2));
+    const auto [sn, tau] = on_plane(S, plane);
     const double scale = std::abs(sn);
     worst = std::max(worst, std::abs(p.lambda0[2] - sn) / scale);
     worst = std::max(worst, std::abs(std::hypot(p.lambda0[0], p.lambda0[1]) - tau) / scale);
@@ -237,12 +244,7 @@ void compare_with_closed_form(const contact::FaultModel& fm, const FaultCase& f,
   p_min = 1e300, p_max = -1e300;
   for (const auto& p : fm.pairs) {
     const double d = surface - p.x[2], p0 = cf.p0(d);
-    const M3 S = cf.S(d, p0);
-    double Sn[3];
-    for (int i = 0; i < 3; ++i) Sn[i] = S[i][0] * plane[0] + S[i][1] * plane[1] + S[i][2] * plane[2];
-    const double sn = Sn[0] * plane[0] + Sn[1] * plane[1] + Sn[2] * plane[2];
-    const double tau = std::sqrt(std::pow(Sn[0] - sn * plane[0], 2) + std::pow(Sn[1] - sn * plane[1], 2) +
-                                 std::pow(Sn[2] - sn * plane[2], 2));
+    const auto [sn, tau] = on_plane(cf.S(d, p0), plane);
     const double scale = std::abs(sn);
     err = std::max({err, std::abs(p.lambda0[2] - sn) / scale, std::abs(std::hypot(p.lambda0[0], p.lambda0[1]) - tau) / scale,
                     std::abs(p.p0 - p0) / scale});
