@@ -17,8 +17,16 @@ deps:
 # targets together); an existing tree keeps the generator it was made with.
 GENERATOR = $(if $(wildcard $(BUILD)/CMakeCache.txt),,-G Ninja)
 
+# ccache (scripts/install-deps installs it) keeps compiled units between build trees and clones:
+# CCACHE_BASEDIR makes the cached compile commands independent of where the clone lives, so a second
+# clone or a rebuild compiles only what changed. Without ccache the build is the same, only slower.
+CCACHE   := $(shell command -v ccache 2>/dev/null)
+LAUNCHER  = $(if $(CCACHE),-DCMAKE_CXX_COMPILER_LAUNCHER=$(CCACHE) -DCMAKE_C_COMPILER_LAUNCHER=$(CCACHE))
+export CCACHE_BASEDIR ?= $(CURDIR)
+export CCACHE_SLOPPINESS ?= time_macros,include_file_mtime,include_file_ctime
+
 configure: deps
-	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release $(LAUNCHER)
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
