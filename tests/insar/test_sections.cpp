@@ -66,9 +66,16 @@ TEST(Sections, SlicesTileTheSectionPlane) {
     EXPECT_NEAR(s.length, len, 1e-9);
     EXPECT_NEAR(total_area(s), len * 100.0, 1e-6 * len * 100.0) << "polyline of " << l.size() << " points";
   }
-  // A depth window keeps only the tetrahedra reaching into it: here the one 20 m layer between -60 and -40.
+  // A depth window clips the polygons to it: inside the one 20 m layer between -60 and -40 they tile
+  // the 18 m of the window; across three layers, the 45 m from -75 to -30 (no blank wedges).
   const SectionSlice w = slice_tets(b.mesh.nodes, b.tets, "w", lines[0], -59, -41);
-  EXPECT_NEAR(total_area(w), std::hypot(880, 650) * 20.0, 1e-6 * 1e5);
+  EXPECT_NEAR(total_area(w), std::hypot(880, 650) * 18.0, 1e-6 * 1e5);
+  const SectionSlice w3 = slice_tets(b.mesh.nodes, b.tets, "w3", lines[1], -75, -30);
+  EXPECT_NEAR(total_area(w3), w3.length * 45.0, 1e-6 * w3.length * 45.0);
+  for (std::size_t i = 0; i < w3.sz.size(); i += 2) {
+    EXPECT_GE(w3.sz[i + 1], -75.0);
+    EXPECT_LE(w3.sz[i + 1], -30.0);
+  }
 }
 
 TEST(Sections, LayerTopAndConfinementHeight) {

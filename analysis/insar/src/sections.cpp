@@ -54,18 +54,27 @@ SectionSlice slice_tets(std::span<const Point3> x, std::span<const Tet> tets, co
       std::sort(pts.begin(), pts.begin() + np, [&](const auto& p, const auto& q) {
         return std::atan2(p[1] - cz, p[0] - cs) < std::atan2(q[1] - cz, q[0] - cs);
       });
-      // Clip to this segment's stretch of the section, s0 <= s <= s0 + len.
+      // Clip to this segment's stretch of the section, s0 <= s <= s0 + len, and to the depth window
+      // zmin <= z <= zmax: the polygons tile the window's rectangle, with no ragged edges of the
+      // tetrahedra that reach out of it (blank wedges in the pictures).
       std::vector<std::array<double, 2>> poly(pts.begin(), pts.begin() + np);
-      for (const auto& [bound, keep_below] : {std::pair{s0, false}, std::pair{s0 + len, true}}) {
+      struct Bound {
+        int axis;  // 0: s, 1: z
+        double at;
+        bool keep_below;
+      };
+      for (const Bound& b : {Bound{0, s0, false}, Bound{0, s0 + len, true}, Bound{1, zmin, false}, Bound{1, zmax, true}}) {
         std::vector<std::array<double, 2>> next;
-        const auto inside = [&](const std::array<double, 2>& p) { return keep_below ? p[0] <= bound : p[0] >= bound; };
+        const auto inside = [&](const std::array<double, 2>& p) { return b.keep_below ? p[b.axis] <= b.at : p[b.axis] >= b.at; };
         for (std::size_t i = 0; i < poly.size(); ++i) {
           const auto& p = poly[i];
           const auto& q = poly[(i + 1) % poly.size()];
           if (inside(p)) next.push_back(p);
           if (inside(p) != inside(q)) {
-            const double w = (bound - p[0]) / (q[0] - p[0]);
-            next.push_back({bound, p[1] + w * (q[1] - p[1])});
+            const double w = (b.at - p[b.axis]) / (q[b.axis] - p[b.axis]);
+            std::array<double, 2> r{p[0] + w * (q[0] - p[0]), p[1] + w * (q[1] - p[1])};
+            r[b.axis] = b.at;
+            next.push_back(r);
           }
         }
         poly.swap(next);

@@ -25,7 +25,8 @@ struct SectionSlice {
 };
 
 // The intersection of every tetrahedron with the vertical planes through the polyline's segments
-// (convex polygons in section coordinates), for tetrahedra reaching into [zmin, zmax].
+// (convex polygons in section coordinates), clipped to zmin <= z <= zmax: the polygons tile the
+// section's rectangle [0, length] x [zmin, zmax] where the mesh fills it.
 SectionSlice slice_tets(std::span<const Point3> x, std::span<const Tet> tets, const std::string& name,
                         const std::vector<std::array<double, 2>>& polyline, double zmin, double zmax);
 
