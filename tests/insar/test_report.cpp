@@ -414,6 +414,29 @@ TEST(Report, SafetyHeadlinesFromTheSearchAndTheCaprockTables) {
             std::string::npos)
       << md;
   EXPECT_NE(md.find("smallest Mohr-Coulomb shear margin | 5.50 MPa (seal caprock, 2015-11-01) |"), std::string::npos) << md;
+
+  // A fault that limits the scale: where, and how far from the reservoir trace (a square 0..1000 m:
+  // the patch at x = 960 m is 40 m from its east side). Within --edge-distance the headline says the
+  // answer sits at the reservoir's edge and depends on the mesh there; beyond it, only the distance.
+  test::spit(s.dir / "fault_scenario.csv",
+             "scale,max_chi,critical,fault,date,x_m,y_m,z_m,dp_max_MPa,dp_min_MPa,limiter,seal,min_tensile_margin_MPa,"
+             "min_shear_margin_MPa,note\n"
+             "1,0.4,0,,,0,0,0,1,0,,,,,\n2,1,1,local_2,2025-11-01,960,500,-1540,2,0,fault chi = 1,,,,\n");
+  test::spit(s.dir / "trace.geojson",
+             R"({"type": "FeatureCollection", "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::32632"}},)"
+             R"( "features": [{"type": "Feature", "properties": {"name": "Pool C"},)"
+             R"( "geometry": {"type": "Polygon", "coordinates": [[[0, 0], [1000, 0], [1000, 1000], [0, 1000], [0, 0]]]}}]})");
+  for (const auto& [edge, near] : {std::pair{"", true}, std::pair{" --edge-distance 30", false}}) {
+    const auto rf = test::run(test::tool("ugs-report") + " --results " + d + "solve.h5 --mesh " + d + "model.msh --case " + d +
+                              "case.toml --trace " + d + "trace.geojson --scenario " + d + "fault_scenario.csv -o " + d +
+                              "repf --width 800 --height 600" + edge);
+    ASSERT_EQ(rf.exit_code, 0) << rf.err;
+    const std::string mf = test::slurp(s.dir / "repf" / "summary.md");
+    EXPECT_NE(mf.find("| safety | where it is decided | fault local_2 at (960, 500, -1540), 40 m from the reservoir trace"),
+              std::string::npos) << mf;
+    EXPECT_EQ(mf.find("at the reservoir's edge") != std::string::npos, near) << mf;
+    fs::remove_all(s.dir / "repf");
+  }
   if (!std::getenv("UGS_TEST_KEEP")) fs::remove_all(s.dir);
 }
 

@@ -136,6 +136,11 @@ int main(int argc, char** argv) {
   app.add_option("--exaggeration", o.exaggeration, "Vertical exaggeration of the sections")
       ->capture_default_str()
       ->check(cli::number_in(0, 1e6, cli::Ends::OpenLow));
+  app.add_option("--edge-distance", o.edge_distance,
+                 "Metres from the reservoir trace within which the fault patch that limits the safe scale is called at the "
+                 "reservoir's edge (a mesh-dependent answer)")
+      ->capture_default_str()
+      ->check(cli::number_in(0, 1e6));
   app.add_option("--section-zrange", o.section_zrange, "ZMIN/ZMAX of the sections (default: the pool layer +- 150 m)");
   app.add_option("--compare", o.compare,
                  "LABEL=FILE (repeat): another run's top-surface series on the same mesh; the report compares the "

@@ -33,6 +33,7 @@ struct Options {
   std::string stress_field;              // cell field (default: stress_change, dstress or stress)
   double reference_pressure_MPa = 0;     // normalisation of stress changes (default: the pool's)
   double exaggeration = 10;
+  double edge_distance = 500;  // m: a critical fault patch this close to the reservoir trace is at its edge (safety.cpp)
   std::string section_zrange;            // ZMIN/ZMAX
   std::string fault_dates;               // MIN_DATE,MAX_DATE
   std::string fault_field = "chi";

@@ -50,6 +50,7 @@ struct Search {
   bool any_safe = false;  // some trial below the critical scale was safe
   double safe = 0, critical = std::numeric_limits<double>::infinity();
   std::string limiter, who, date;
+  double x = 0, y = 0, z = 0;  // where the critical trial fails first
   std::string seal_margins;  // "tensile 4.37 MPa, shear 3.96 MPa" at the safe scale (tables with seals)
 };
 
@@ -67,6 +68,7 @@ Search read_search(const std::string& path) {
     if (s.limiter.empty()) s.limiter = "Newton failed";
     s.who = s.limiter == "fault chi = 1" || !cseal ? std::string(t.text(r, cf)) : std::string(t.text(r, *cseal));
     s.date = std::string(t.text(r, cd));
+    s.x = t.number(r, t.column("x_m")), s.y = t.number(r, t.column("y_m")), s.z = t.number(r, t.column("z_m"));
     const auto cn = t.find_column("note");
     if (cn && t.text(r, *cn).find("before or at the reference date") != std::string_view::npos)
       s.date += " (before or at the reference date)";
@@ -79,6 +81,36 @@ Search read_search(const std::string& path) {
   if (safe_row < t.rows() && ct && csh && !t.text(safe_row, *ct).empty())
     s.seal_margins = fmt::format("tensile {:.2f} MPa, shear {:.2f} MPa", t.number(safe_row, *ct), t.number(safe_row, *csh));
   return s;
+}
+
+// Plan distance from (x, y) to the nearest segment of the reservoir trace.
+double distance_to_trace(const std::vector<std::vector<std::array<double, 2>>>& lines, double x, double y) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& l : lines)
+    for (std::size_t k = 0; k + 1 < l.size(); ++k) {
+      const double ax = l[k][0], ay = l[k][1], dx = l[k + 1][0] - ax, dy = l[k + 1][1] - ay;
+      const double len2 = dx * dx + dy * dy;
+      const double w = len2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+      best = std::min(best, std::hypot(x - ax - w * dx, y - ay - w * dy));
+    }
+  return best;
+}
+
+// Where a fault decides the safe scale: a fault patch at the edge of a depleted or pressurized
+// reservoir sits where the stress change concentrates (the fault meets the reservoir's boundary),
+// and chi there grows as the mesh is refined (docs/fault-convergence.md): the headline says so.
+void corner_headline(Context& c, const Search& s) {
+  const double d = distance_to_trace(c.trace_lines, s.x, s.y);
+  if (!std::isfinite(d)) return;
+  const bool at_edge = d <= c.opt.edge_distance;
+  c.headlines.push_back(
+      {"safety", "where it is decided",
+       fmt::format("fault {} at ({:.0f}, {:.0f}, {:.0f}), {:.0f} m from the reservoir trace{}", s.who, s.x, s.y, s.z, d,
+                   at_edge ? fmt::format(" (within {:.0f} m): at the reservoir's edge, where chi concentrates and grows as the "
+                                         "mesh is refined; this answer depends on the fault mesh there (docs/fault-convergence.md)",
+                                         c.opt.edge_distance)
+                           : ""),
+       ""});
 }
 
 void search_headlines(Context& c) {
@@ -101,6 +133,7 @@ void search_headlines(Context& c) {
                            : s.limiter == "Newton failed" ? fmt::format("the solver failed on {} (counted as critical)", s.date)
                                                           : fmt::format("seal {}: {} on {}", s.who, s.limiter, s.date);
   c.headlines.push_back({group, "what limits it", what, ""});
+  if (s.limiter == "fault chi = 1" && !c.trace_lines.empty()) corner_headline(c, s);
   if (!s.seal_margins.empty())
     c.headlines.push_back({group, "smallest seal margins at the maximum safe scale", s.seal_margins, ""});
   if (!c.cs || !s.any_safe) return;
