@@ -164,7 +164,9 @@ MaterialSpec parse_material(const TomlTable& t, const Collect& ok, bool& named) 
   // Constants given as fields: read here, their members NaN; the number checks below skip them.
   std::set<std::string> fields;
   for (const std::string& key : t.keys()) {
-    if (key == "K_m_per_s" || !t.is_table(key)) continue;
+    static const std::set<std::string> known = {"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz",
+                                                "cm_a", "cm_b", "c_R", "E_MPa", "porosity", "sigma_z_min_MPa", "k0", "k_Hmax", "k_hmin"};
+    if (!known.count(key) || !t.is_table(key)) continue;  // (unknown keys: reported above)
     ok([&] {
       if (!material_key_may_vary(key))
         throw t.error(key, "cannot vary in space (a number; the constants that may be fields: biot, nu, nu_z, Eh_over_Ez, "

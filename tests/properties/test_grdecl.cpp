@@ -49,7 +49,7 @@ TEST(Grdecl, ReadsRepeatsCommentsIncludesAndRecords) {
   const GrdeclFile f = read_grdecl(d / "main.grdecl");
   ASSERT_NE(f.find("PORO"), nullptr);
   EXPECT_EQ(f.find("PORO")->values, (std::vector<double>{0.1, 0.25, 0.25}));
-  EXPECT_EQ(f.find("PORO")->where, d / "grid.grdecl" + ":14");
+  EXPECT_EQ(f.find("PORO")->where, d / "grid.grdecl" + ":13");  // the keyword's line
   EXPECT_EQ(f.find("NTG")->values, (std::vector<double>{0.5, 0.5, 0.5}));
   EXPECT_EQ(f.find("SPECGRID")->words, (std::vector<std::string>{"F"}));
   EXPECT_EQ(f.find("FAULTS"), nullptr);  // records skipped

@@ -243,6 +243,10 @@ TEST(MaterialFields, CaseFileRefusesWhatCannotBeAField) {
 TEST(MaterialFields, InitArrayThroughTheEgrid) {
   test::TempDir d("mf-init");
   ASSERT_EQ(test::run(std::string(UGS_PYTHON) + " " + UGS_SOURCE_DIR + "/tests/eclipse/make_deck.py " + d / "T.DATA").exit_code, 0);
+  // INIT in the GRID section: the simulator writes T.INIT.
+  std::string deck = test::slurp(d / "T.DATA");
+  deck.replace(deck.find("\nGRID\n"), 6, "\nGRID\nINIT\n");
+  test::spit(d / "T.DATA", deck);
   const auto r = test::run("cd " + d.path.string() + " && " + UGS_FLOW + " T.DATA --output-dir=. > flow.log 2>&1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CaseFile c = case_with(d, "E_MPa = { init = \"T.INIT\", keyword = \"DEPTH\" }\n");

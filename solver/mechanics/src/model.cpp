@@ -147,8 +147,9 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
             model.materials.push_back(material_from_spec(fields.specs[c], cs));
           } catch (const InputError& err) {
             const Point3& x = fields.first_centroid[c];
+            const std::string what = err.where().empty() ? err.what() : std::string(err.what()).substr(err.where().size() + 2);
             throw InputError(fields.specs[c].where, fmt::format("the fields' values at tetrahedron {} (centroid {:.2f}, {:.2f}, {:.2f}): {}",
-                                                                fields.first_tag[c], x[0], x[1], x[2], err.what()));
+                                                                fields.first_tag[c], x[0], x[1], x[2], what));
           }
         }
         m = copy_material[c];
