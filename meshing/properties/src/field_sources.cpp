@@ -23,21 +23,6 @@ struct LocatedGrid {
   std::unique_ptr<HexLocator> locator;
 };
 
-// Bilinear on the map's cell holding (x, y); not covered outside the grid or next to an undefined node.
-bool map_value(const HorizonGrid& g, double x, double y, double& out) {
-  const double a = g.rotation_deg * (M_PI / 180.0), dx = x - g.x0, dy = y - g.y0;
-  const double u = std::cos(a) * dx + std::sin(a) * dy, v = -std::sin(a) * dx + std::cos(a) * dy;
-  const double fi = u / g.dx, fj = v / g.dy;
-  const double last_i = static_cast<double>(g.nx - 1), last_j = static_cast<double>(g.ny - 1);
-  if (!(fi >= 0 && fi <= last_i && fj >= 0 && fj <= last_j)) return false;
-  const std::size_t i = std::min(static_cast<std::size_t>(fi), g.nx - 2), j = std::min(static_cast<std::size_t>(fj), g.ny - 2);
-  const double s = fi - static_cast<double>(i), t = fj - static_cast<double>(j);
-  const double z00 = g.at(i, j), z10 = g.at(i + 1, j), z01 = g.at(i, j + 1), z11 = g.at(i + 1, j + 1);
-  if (std::isnan(z00) || std::isnan(z10) || std::isnan(z01) || std::isnan(z11)) return false;
-  out = (1 - s) * (1 - t) * z00 + s * (1 - t) * z10 + (1 - s) * t * z01 + s * t * z11;
-  return true;
-}
-
 }  // namespace
 
 Sampled sample_table(const MaterialField& f, std::span<const FieldSite> sites, double surface_elevation) {
@@ -163,7 +148,7 @@ Sampled FieldSources::sample(const MaterialField& f, std::span<const FieldSite> 
                                                  horizon_format_name(fmt_of)));
         }
         for (std::size_t s = 0; s < sites.size(); ++s)
-          r.covered[s] = map_value(*m, sites[s].centroid[0], sites[s].centroid[1], r.value[s]);
+          r.covered[s] = horizon_grid_value(*m, sites[s].centroid[0], sites[s].centroid[1], r.value[s]) == GridPoint::Value;
         return r;
       }
       case Source::Cells: {
