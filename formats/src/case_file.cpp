@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <set>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -73,6 +75,81 @@ void read_ratios(const TomlTable& t, std::optional<double>& kH, std::optional<do
   });
 }
 
+// The [[material]] keys whose value may be a field, with the SI factor of their unit.
+double field_key_si(const std::string& key) { return key == "E_MPa" ? kMPa : 1.0; }
+
+// `key = { grdecl = ..., keyword = ... }` (or init, elevation_table, depth_table, map, cells): a
+// constant that varies in space. The file is checked to exist here, so that a missing one names
+// its line; the rest (keyword, coverage, values) when the mesh is known.
+MaterialField parse_field(const TomlTable& f, const std::string& key, const std::string& case_path) {
+  MaterialField m;
+  m.key = key;
+  m.where = f.where();
+  m.si = field_key_si(key.substr(0, key.find('[')));
+  f.reject_unknown({"grdecl", "init", "elevation_table", "depth_table", "map", "cells", "keyword", "field", "grid", "date",
+                    "offset_m", "scale"});
+  static const std::vector<std::pair<const char*, MaterialField::Source>> sources = {
+      {"grdecl", MaterialField::Source::Grdecl},       {"init", MaterialField::Source::Init},
+      {"elevation_table", MaterialField::Source::Table}, {"depth_table", MaterialField::Source::Table},
+      {"map", MaterialField::Source::Map},             {"cells", MaterialField::Source::Cells}};
+  std::vector<std::string> given;
+  for (const auto& [name, source] : sources)
+    if (f.has(name)) given.push_back(name), m.source = source;
+  if (given.size() != 1)
+    throw f.error(given.empty() ? "grdecl" : given[1],
+                  given.empty() ? "a field needs its source: one of grdecl, init, elevation_table, depth_table, map, cells"
+                                : fmt::format("two sources ({} and {}): give one", given[0], given[1]));
+  const std::string& source = given[0];
+  const auto need = [&](const std::string& k, bool wanted) {
+    if (f.has(k) != wanted)
+      throw f.error(k, wanted ? fmt::format("is required with {}", source) : fmt::format("does not go with {}", source));
+  };
+  const bool grid_source = m.source == MaterialField::Source::Grdecl || m.source == MaterialField::Source::Init;
+  need("keyword", grid_source);
+  need("field", m.source == MaterialField::Source::Cells);
+  if (f.has("grid") && !grid_source) need("grid", false);
+  if (f.has("offset_m") && !grid_source) need("offset_m", false);
+  if (f.has("date") && m.source != MaterialField::Source::Cells) need("date", false);
+  const auto existing = [&](const std::string& k) {
+    const std::string path = resolve_relative(case_path, f.string(k));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw f.error(k, fmt::format("no such file: {}", path));
+    return path;
+  };
+  if (m.source == MaterialField::Source::Table) {
+    m.by_depth = source == "depth_table";
+    std::vector<std::string> row_where;
+    const auto rows = f.number_rows(source, 2, &row_where);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      if (r > 0 && !(rows[r][0] > rows[r - 1][0]))
+        throw InputError(row_where[r], fmt::format("'{}' row {}: {} m after {} m (expected rows in increasing {})", key, r + 1,
+                                                   rows[r][0], rows[r - 1][0], m.by_depth ? "depth" : "elevation"));
+      m.rows.push_back({rows[r][0], rows[r][1]});
+    }
+  } else {
+    m.file = existing(source);
+  }
+  if (grid_source) {
+    m.keyword = f.string("keyword");
+    if (f.has("grid")) m.grid = existing("grid");
+    if (f.has("offset_m")) {
+      const auto o = f.numbers("offset_m");
+      if (o.size() != 3) throw f.error("offset_m", fmt::format("has {} numbers (expected [dx, dy, dz] in m)", o.size()));
+      m.offset_m = {o[0], o[1], o[2]};
+    }
+  }
+  if (m.source == MaterialField::Source::Cells) {
+    m.keyword = f.string("field");
+    m.date = f.string_opt("date").value_or("");
+  }
+  m.scale = positive(f, "scale", f.number_or("scale", 1.0));
+  // A table's values are known now: each checked as the number would be.
+  for (std::size_t r = 0; r < m.rows.size(); ++r)
+    if (const std::string why = material_value_problem(key, m.scale * m.si * m.rows[r].value); !why.empty())
+      throw f.error(source, fmt::format("row {}: {}", r + 1, why));
+  return m;
+}
+
 MaterialSpec parse_material(const TomlTable& t, const Collect& ok, bool& named) {
   MaterialSpec m;
   m.where = t.where();
@@ -84,40 +161,69 @@ MaterialSpec parse_material(const TomlTable& t, const Collect& ok, bool& named) 
   t.reject_unknown({"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b", "c_R",
                     "E_MPa", "K_m_per_s", "porosity", "sigma_z_min_MPa", "k0", "k_Hmax", "k_hmin", "Hmax_azimuth_deg"},
                    ok.errors);
+  // Constants given as fields: read here, their members NaN; the number checks below skip them.
+  std::set<std::string> fields;
+  for (const std::string& key : t.keys()) {
+    static const std::set<std::string> known = {"name", "law", "biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz",
+                                                "cm_a", "cm_b", "c_R", "E_MPa", "porosity", "sigma_z_min_MPa", "k0", "k_Hmax", "k_hmin"};
+    if (!known.count(key) || !t.is_table(key)) continue;  // (unknown keys: reported above)
+    ok([&] {
+      if (!material_key_may_vary(key))
+        throw t.error(key, "cannot vary in space (a number; the constants that may be fields: biot, nu, nu_z, Eh_over_Ez, "
+                           "nuh_over_nuz, Gh_over_Gz, cm_a, cm_b, c_R, E_MPa, K_m_per_s, porosity)");
+      m.fields.push_back(parse_field(t.table(key), key, t.file()));
+      m.set_value(key, std::numeric_limits<double>::quiet_NaN());
+    });
+    fields.insert(key);
+  }
+  const auto number = [&](const std::string& key) { return t.has(key) && !fields.count(key); };
   named = ok([&] { m.name = t.string("name"); });
   ok([&] { m.law = t.has("law") ? parse_law(t) : MaterialLaw::ElasticDepth; });
   ok([&] {
+    if (fields.count("biot")) return;
     m.biot = t.number_or("biot", 1.0);
     if (m.biot < 0 || m.biot > 1) throw t.error("biot", "must lie in [0, 1]");
   });
   const bool nu_read = ok([&] {
     if (t.has("nu") && t.has("nu_z")) throw t.error("nu", "give either nu (isotropic) or nu_z, not both");
+    if (fields.count("nu") || fields.count("nu_z")) return;
     const double nu = t.has("nu") ? t.number("nu") : t.number_or("nu_z", 0.3);
     const std::string nu_key = t.has("nu") ? "nu" : "nu_z";
     if (!(nu > -1 && nu < 0.5)) throw t.error(nu_key, fmt::format("Poisson ratio {} outside (-1, 0.5)", nu));
     m.nu_z = nu;
-  });
-  ok([&] { m.Eh_over_Ez = positive(t, "Eh_over_Ez", t.number_or("Eh_over_Ez", 1.0)); });
+  }) && !fields.count("nu") && !fields.count("nu_z");
   ok([&] {
+    if (!fields.count("Eh_over_Ez")) m.Eh_over_Ez = positive(t, "Eh_over_Ez", t.number_or("Eh_over_Ez", 1.0));
+  });
+  ok([&] {
+    if (fields.count("nuh_over_nuz")) return;
     m.nuh_over_nuz = t.number_or("nuh_over_nuz", 1.0);
     const double nu_h = m.nu_z * m.nuh_over_nuz;
     if (nu_read && !(nu_h > -1 && nu_h < 1))
       throw t.error("nuh_over_nuz", fmt::format("horizontal Poisson ratio {} outside (-1, 1)", nu_h));
   });
-  ok([&] { m.Gh_over_Gz = positive(t, "Gh_over_Gz", t.number_or("Gh_over_Gz", 1.0)); });
-  ok([&] { m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2)); });
   ok([&] {
+    if (!fields.count("Gh_over_Gz")) m.Gh_over_Gz = positive(t, "Gh_over_Gz", t.number_or("Gh_over_Gz", 1.0));
+  });
+  ok([&] {
+    if (!fields.count("cm_a")) m.cm_a = positive(t, "cm_a", t.number_or("cm_a", 1.0044e-2));
+  });
+  ok([&] {
+    if (fields.count("cm_b")) return;
     m.cm_b = t.number_or("cm_b", 1.1347);
     if (!(m.cm_b >= 0))  // (non-finite numbers are refused by the TOML reader)
       throw t.error("cm_b",
                     fmt::format("must not be negative (c_M = cm_a sigma^-cm_b decreases with stress), got {}", m.cm_b));
   });
   ok([&] {
-    if (t.has("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
+    if (number("c_R")) m.c_R = positive(t, "c_R", t.number("c_R"));
   });
-  ok([&] { m.sigma_z_min_MPa = positive(t, "sigma_z_min_MPa", t.number_or("sigma_z_min_MPa", 0.1)); });
   ok([&] {
-    if (t.has("E_MPa")) m.E_Pa = positive(t, "E_MPa", t.number("E_MPa")) * kMPa;
+    if (t.is_table("sigma_z_min_MPa")) return;  // (refused above)
+    m.sigma_z_min_MPa = positive(t, "sigma_z_min_MPa", t.number_or("sigma_z_min_MPa", 0.1));
+  });
+  ok([&] {
+    if (number("E_MPa")) m.E_Pa = positive(t, "E_MPa", t.number("E_MPa")) * kMPa;
   });
   // (A value given but refused above is one problem, not also a missing one.)
   ok([&] {
@@ -128,18 +234,32 @@ MaterialSpec parse_material(const TomlTable& t, const Collect& ok, bool& named) 
   });
   ok([&] {
     if (!t.has("K_m_per_s")) return;
-    const auto k = t.numbers("K_m_per_s");
-    if (k.size() != 3) throw t.error("K_m_per_s", "expected [Kx, Ky, Kz]");
-    for (double v : k)
-      if (!(v > 0)) throw t.error("K_m_per_s", fmt::format("conductivities must be positive, got {}", v));
-    m.K = std::array<double, 3>{k[0], k[1], k[2]};
+    // [Kx, Ky, Kz], each a number or a field.
+    const auto items = t.items("K_m_per_s");
+    if (items.size() != 3) throw t.error("K_m_per_s", "expected [Kx, Ky, Kz]");
+    std::array<double, 3> k{};
+    for (std::size_t d = 0; d < 3; ++d) {
+      const std::string key = fmt::format("K_m_per_s[{}]", d);
+      if (items[d].is_table()) {
+        m.fields.push_back(parse_field(items[d], key, t.file()));
+        k[d] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
+      const auto v = items[d].as_number();
+      if (!v) throw t.error("K_m_per_s", "expected [Kx, Ky, Kz], each a number or a field { ... }");
+      if (!(*v > 0)) throw t.error("K_m_per_s", fmt::format("conductivities must be positive, got {}", *v));
+      k[d] = *v;
+    }
+    m.K = k;
   });
   ok([&] {
-    if (!t.has("porosity")) return;
+    if (!number("porosity")) return;
     const double n = t.number("porosity");
     if (!(n > 0 && n < 1)) throw t.error("porosity", "must lie in (0, 1)");
     m.porosity = n;
   });
+  for (const char* key : {"k0", "k_Hmax", "k_hmin"})
+    if (t.is_table(key)) return m;  // (refused above; read_ratios would say it again)
   read_ratios(t, m.k_Hmax, m.k_hmin, ok, true);
   return m;
 }
@@ -280,6 +400,47 @@ std::vector<std::string> boundary_list(const TomlTable& t, const std::string& ke
 }
 
 }  // namespace
+
+bool material_key_may_vary(const std::string& key) {
+  static const std::set<std::string> keys = {"biot", "nu", "nu_z", "Eh_over_Ez", "nuh_over_nuz", "Gh_over_Gz", "cm_a", "cm_b",
+                                             "c_R", "E_MPa", "porosity", "K_m_per_s[0]", "K_m_per_s[1]", "K_m_per_s[2]"};
+  return keys.count(key) > 0;
+}
+
+std::string material_value_problem(const std::string& key, double v) {
+  if (!std::isfinite(v)) return fmt::format("{} = {} (expected a finite number)", key, v);
+  if (key == "biot") return v >= 0 && v <= 1 ? "" : fmt::format("biot = {} outside [0, 1]", v);
+  if (key == "porosity") return v > 0 && v < 1 ? "" : fmt::format("porosity = {} outside (0, 1)", v);
+  if (key == "nu" || key == "nu_z") return v > -1 && v < 0.5 ? "" : fmt::format("Poisson ratio {} = {} outside (-1, 0.5)", key, v);
+  if (key == "cm_b") return v >= 0 ? "" : fmt::format("cm_b = {} is negative (expected >= 0)", v);
+  if (key == "nuh_over_nuz") return "";  // nu_h = nu_z nuh_over_nuz in (-1, 1) is checked with nu_z
+  return v > 0 ? "" : fmt::format("{} = {:g} (expected a positive number)", key, v);
+}
+
+const MaterialField* MaterialSpec::field(const std::string& key) const {
+  for (const auto& f : fields)
+    if (f.key == key) return &f;
+  return nullptr;
+}
+
+void MaterialSpec::set_value(const std::string& key, double v) {
+  if (key == "biot") biot = v;
+  else if (key == "nu" || key == "nu_z") nu_z = v;
+  else if (key == "Eh_over_Ez") Eh_over_Ez = v;
+  else if (key == "nuh_over_nuz") nuh_over_nuz = v;
+  else if (key == "Gh_over_Gz") Gh_over_Gz = v;
+  else if (key == "cm_a") cm_a = v;
+  else if (key == "cm_b") cm_b = v;
+  else if (key == "c_R") c_R = v;
+  else if (key == "E_MPa") E_Pa = v;
+  else if (key == "porosity") porosity = v;
+  else if (key.rfind("K_m_per_s[", 0) == 0 && key.size() == 12 && key[10] >= '0' && key[10] <= '2') {
+    if (!K) K = std::array<double, 3>{};
+    (*K)[static_cast<std::size_t>(key[10] - '0')] = v;
+  } else {
+    throw std::logic_error("MaterialSpec::set_value: '" + key + "' cannot vary");
+  }
+}
 
 const MaterialSpec* CaseFile::material(const std::string& name) const {
   for (const auto& m : materials)

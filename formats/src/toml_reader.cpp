@@ -219,6 +219,23 @@ TomlTable TomlTable::table(const std::string& key) const {
   return TomlTable(v, file_, path_.empty() ? key : path_ + "." + key);
 }
 
+bool TomlTable::is_table(const std::string& key) const { return has(key) && at(key).is_table(); }
+
+std::vector<TomlTable> TomlTable::items(const std::string& key) const {
+  const auto& v = at(key);
+  if (!v.is_array()) throw error(key, "expected an array, got " + type_name(v));
+  std::vector<TomlTable> r;
+  std::size_t i = 0;
+  for (const auto& e : v.as_array()) r.emplace_back(e, file_, fmt::format("{}[{}]", path_.empty() ? key : path_ + "." + key, i++));
+  return r;
+}
+
+std::optional<double> TomlTable::as_number() const {
+  if (v_.is_floating()) return v_.as_floating();
+  if (v_.is_integer()) return static_cast<double>(v_.as_integer());
+  return std::nullopt;
+}
+
 std::vector<TomlTable> TomlTable::tables(const std::string& key) const {
   std::vector<TomlTable> r;
   if (!has(key)) return r;

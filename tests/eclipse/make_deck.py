@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the tiny OPM Flow deck of the ECLIPSE import tests (tests/eclipse).
 
-    make_deck.py OUT.DATA [--units metric|field] [--unifout|--no-unifout]
+    make_deck.py OUT.DATA [--units metric|field] [--unifout|--no-unifout] [--grdecl OUT.GRDECL]
 
 8 x 6 x 4 = 192 corner-point cells of 100 x 100 x ~10 m: pillars leaning 2 m east over their
 length, tops dipping and twisted (non-planar cell faces), a 15 m throw on the pillars of i = 4
@@ -11,6 +11,9 @@ Three phases, the oil zone of zero thickness: a gas cap over water (GOC = OWC), 
 2022.10 runs (a two-phase GAS WATER deck stops with "data member deactivated"). A gas well
 injects for two months and produces for two: four report steps, restart every step.
 The FIELD variant is the same reservoir in feet, psia, Mscf/day.
+--grdecl also writes the GRID section as a GRDECL file (SPECGRID, MAPAXES, COORD, ZCORN, ACTNUM,
+PORO, PERMX/Y/Z) with UGSCELL = 1 + the cell's natural index (i + NX (j + NY k), 0-based), the
+material-field tests' hand-checkable property (tests/properties).
 """
 import argparse
 import math
@@ -45,6 +48,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--units", choices=["metric", "field"], default="metric")
     ap.add_argument("--no-unifout", action="store_true", help="non-unified restart (CASE.X0001, ...)")
+    ap.add_argument("--grdecl", help="also write the GRID section as a GRDECL file")
     a = ap.parse_args()
     field = a.units == "field"
     L = 1 / 0.3048 if field else 1.0        # m -> ft
@@ -66,6 +70,7 @@ def main():
     if not a.no_unifout:
         w("UNIFOUT")
     w("GRID")
+    grid_start = len(out)
     # MAPAXES: a point on the Y axis, the origin, a point on the X axis (map coordinates, metres).
     ex, ey = AXIS_X, (-AXIS_X[1], AXIS_X[0])
     w("MAPUNITS\n 'METRES' /")
@@ -107,6 +112,7 @@ def main():
     n = NX * NY * NZ
     w("PORO\n %d*0.2 /" % n)
     w("PERMX\n %d*200 /\nPERMY\n %d*200 /\nPERMZ\n %d*20 /" % (n, n, n))
+    grid_end = len(out)
     w("PROPS")
     w("SWOF\n 0.2 0 1 0\n 1.0 1 0 0 /")
     w("SGOF\n 0 0 1 0\n 0.8 1 0 0 /")
@@ -134,6 +140,16 @@ def main():
     w("END")
     with open(a.out, "w") as f:
         f.write("\n".join(out) + "\n")
+    if a.grdecl:
+        g = ["-- GRID section of the tiny deck (make_deck.py --grdecl)", "SPECGRID\n %d %d %d 1 F /" % (NX, NY, NZ)]
+        g += out[grid_start:grid_end]
+        g.append("UGSCELL")
+        cells = [str(c + 1) for c in range(n)]
+        for k in range(0, n, 12):
+            g.append(" " + " ".join(cells[k:k + 12]))
+        g.append("/")
+        with open(a.grdecl, "w") as f:
+            f.write("\n".join(g) + "\n")
 
 
 if __name__ == "__main__":

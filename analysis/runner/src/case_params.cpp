@@ -141,6 +141,16 @@ const toml::value& lookup(const toml::value& root, const std::string& path, cons
     }
     so_far = here;
   }
+  // A constant given as a field ({ grdecl = ..., scale = ... }): the parameter is its scale factor.
+  if (cur->is_table()) {
+    bool field = false;
+    for (const char* source : {"grdecl", "init", "elevation_table", "depth_table", "map", "cells"}) field = field || cur->contains(source);
+    if (field) {
+      if (!cur->contains("scale"))
+        throw missing("it is a field; write scale = 1.0 in its { ... } for the factor a parameter varies");
+      cur = &cur->at("scale");
+    }
+  }
   if (!cur->is_floating() && !cur->is_integer()) throw missing("it is not a number");
   if (cur->is_floating() && !std::isfinite(cur->as_floating()))
     throw InputError(fmt::format("{}:{}", file, cur->location().line()),

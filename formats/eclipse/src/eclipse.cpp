@@ -29,13 +29,7 @@ std::string trim_upper(std::string s) {
   return s;
 }
 
-// Metres per unit of a GRIDUNIT / MAPUNITS name.
-double length_unit_m(const std::string& unit, const std::string& where) {
-  if (unit == "METRES" || unit == "METERS" || unit == "M") return 1.0;
-  if (unit == "FEET" || unit == "FT") return 0.3048;
-  if (unit == "CM") return 0.01;
-  throw InputError(where, fmt::format("unknown length unit '{}' (expected METRES, FEET or CM)", unit));
-}
+double length_unit_m(const std::string& unit, const std::string& where) { return grid_length_unit_m(unit, where); }
 
 // Runs an EclIO call; whatever it throws (missing file, "tail not matching header" of a truncated
 // file, an array of an unexpected type) becomes an InputError naming the file.
@@ -113,14 +107,6 @@ std::array<int, 3> check_egrid_arrays(Opm::EclIO::EclFile& f, const std::string&
 
 }  // namespace
 
-std::array<int, 3> Grid::ijk(std::uint32_t g) const {
-  const int nx = dims[0], ny = dims[1];
-  const int i = static_cast<int>(g % static_cast<std::uint32_t>(nx));
-  const int j = static_cast<int>((g / static_cast<std::uint32_t>(nx)) % static_cast<std::uint32_t>(ny));
-  const int k = static_cast<int>(g / (static_cast<std::uint32_t>(nx) * static_cast<std::uint32_t>(ny)));
-  return {i, j, k};
-}
-
 Grid read_egrid(const std::string& path, const Point3& offset) {
   if (!fs::exists(path)) throw InputError(path, "no such file (expected the EGRID of the simulation, CASE.EGRID)");
   Grid grid;
@@ -180,7 +166,7 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
     // the file, used in double from here on.
     // Read from the records themselves: EGrid::get_mapaxes() is converted by MAPUNITS in some
     // opm-common versions and not in others.
-    std::array<double, 2> origin{0, 0}, ex{1, 0}, ey{0, 1};
+    MapAxes axes;
     if (eg.hasKey("MAPAXES")) {
       const std::vector<float> ma = eg.get<float>("MAPAXES");
       if (ma.size() != 6) throw InputError(path, fmt::format("MAPAXES has {} values (expected 6)", ma.size()));
@@ -191,18 +177,8 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
       }
       const double M = mu.empty() ? L : length_unit_m(mu, path + ": MAPUNITS");
       std::array<double, 6> p;
-      for (int q = 0; q < 6; ++q) {
-        p[q] = static_cast<double>(ma[q]) * M;
-        if (!std::isfinite(p[q])) throw InputError(path, fmt::format("MAPAXES value {} is not finite", q + 1));
-      }
-      origin = {p[2], p[3]};
-      ex = {p[4] - p[2], p[5] - p[3]};
-      ey = {p[0] - p[2], p[1] - p[3]};
-      const double lx = std::hypot(ex[0], ex[1]), ly = std::hypot(ey[0], ey[1]);
-      if (!(lx > 0) || !(ly > 0))
-        throw InputError(path, "MAPAXES: the X- or Y-axis point equals the origin (expected three distinct points)");
-      ex = {ex[0] / lx, ex[1] / lx};
-      ey = {ey[0] / ly, ey[1] / ly};
+      for (int q = 0; q < 6; ++q) p[q] = static_cast<double>(ma[q]) * M;
+      axes = map_axes(p, path);
       grid.mapaxes = true;
     }
     if (eg.hasKey("NNC1")) grid.nnc = eg.get<int>("NNC1").size();
@@ -217,8 +193,7 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
           const auto ijk = grid.ijk(grid.global[a]);
           throw InputError(path, fmt::format("cell ({},{},{}): corner {} is not finite", ijk[0] + 1, ijk[1] + 1, ijk[2] + 1, c + 1));
         }
-        grid.corners[a][c] = {origin[0] + x * ex[0] + y * ey[0] + offset[0], origin[1] + x * ex[1] + y * ey[1] + offset[1],
-                              -depth + offset[2]};
+        grid.corners[a][c] = axes.to_mesh(x, y, depth, offset);
       }
     }
   });

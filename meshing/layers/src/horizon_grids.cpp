@@ -207,7 +207,6 @@ HorizonSampling sample_grid(const HorizonGrid& g, std::span<const XY> points) {
   out.format = g.format;
   const std::size_t n = points.size();
   out.values.assign(n, nan);
-  const double a = g.rotation_deg * (M_PI / 180.0), ca = std::cos(a), sa = std::sin(a);
   {
     double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
     for (std::size_t i : {std::size_t{0}, g.nx - 1})
@@ -217,33 +216,12 @@ HorizonSampling sample_grid(const HorizonGrid& g, std::span<const XY> points) {
       }
     out.extent = {x0, y0, x1, y1};
   }
-  const double nxm = static_cast<double>(g.nx - 1), nym = static_cast<double>(g.ny - 1);
-  constexpr double eps = 1e-9;
   for (std::size_t k = 0; k < n; ++k) {
-    const double ex = points[k][0] - g.x0, ey = points[k][1] - g.y0;
-    const double pu = (ca * ex + sa * ey) / g.dx, pv = (-sa * ex + ca * ey) / g.dy;
-    if (!(pu >= -eps && pu <= nxm + eps && pv >= -eps && pv <= nym + eps)) {
-      out.outside.push_back(static_cast<std::uint32_t>(k));
-      continue;
+    switch (horizon_grid_value(g, points[k][0], points[k][1], out.values[k])) {
+      case GridPoint::Value: break;
+      case GridPoint::Outside: out.outside.push_back(static_cast<std::uint32_t>(k)); break;
+      case GridPoint::Undefined: out.undefined.push_back(static_cast<std::uint32_t>(k)); break;
     }
-    const double u = std::clamp(pu, 0.0, nxm), v = std::clamp(pv, 0.0, nym);
-    const std::size_t i0 = std::min(static_cast<std::size_t>(std::floor(u)), g.nx - 2);
-    const std::size_t j0 = std::min(static_cast<std::size_t>(std::floor(v)), g.ny - 2);
-    const double fx = u - static_cast<double>(i0), fy = v - static_cast<double>(j0);
-    const double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-    const double z[4] = {g.at(i0, j0), g.at(i0 + 1, j0), g.at(i0, j0 + 1), g.at(i0 + 1, j0 + 1)};
-    double sum = 0;
-    bool good = true;
-    for (int c = 0; c < 4; ++c) {
-      if (w[c] == 0) continue;
-      if (std::isnan(z[c])) {
-        good = false;
-        break;
-      }
-      sum += w[c] * z[c];
-    }
-    if (good) out.values[k] = sum;
-    else out.undefined.push_back(static_cast<std::uint32_t>(k));
   }
   return out;
 }

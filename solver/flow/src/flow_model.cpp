@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/meshing/material_fields.hpp"
 #include "ugs/solver/compressibility.hpp"
 #include <fmt/ranges.h>
 
@@ -205,19 +206,28 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
   struct Tet {
     std::array<std::uint32_t, 4> node, dof;
     int material;
+    std::size_t in_mesh;  // index among the mesh's tetrahedra (MaterialFieldValues::instance)
   };
   std::vector<Tet> tets;
+  std::size_t in_mesh = 0;
   for (std::size_t bi = 0; bi < mesh.blocks.size(); ++bi) {
     const int m = block_material[bi];
-    if (m < 0 || fm.materials[m].pool >= 0) continue;
+    if (mesh.blocks[bi].type != ElementType::Tetrahedron) continue;
     const ElementBlock& b = mesh.blocks[bi];
+    if (m < 0 || fm.materials[m].pool >= 0) {
+      in_mesh += b.size();
+      continue;
+    }
     for (std::size_t i = 0; i < b.size(); ++i) {
       Tet t;
       for (int k = 0; k < 4; ++k) t.node[k] = b.element(i)[k], t.dof[k] = fm.dof_of_node[t.node[k]];
       t.material = m;
+      t.in_mesh = in_mesh++;
       tets.push_back(t);
     }
   }
+  // Constants that vary in space: each tetrahedron's own copy of its material (none without fields).
+  const MaterialFieldValues fields = material_field_values(mesh, c);
   const std::size_t n = fm.num_dofs;
   std::vector<std::size_t> tet_start(n + 1, 0);
   for (const Tet& t : tets)
@@ -273,6 +283,8 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
   fm.k_multiplier.assign(fm.materials.size(), 1.0);
   fm.storage.assign(n, 0.0);
   std::vector<char> cm_seen(fm.materials.size(), 0);
+  // Materials with fields: K and porosity reported as their volume-weighted means.
+  std::vector<std::array<double, 5>> field_sums(fm.materials.size(), {0, 0, 0, 0, 0});  // V K, V n, V
   for (const Tet& t : tets) {
     const Point3 &x0 = mesh.nodes[t.node[0]], &x1 = mesh.nodes[t.node[1]], &x2 = mesh.nodes[t.node[2]],
                  &x3 = mesh.nodes[t.node[3]];
@@ -301,24 +313,37 @@ FlowModel build_flow_model(const Mesh& mesh, const CaseFile& c, const FlowModelO
     g[3][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) * inv;
     for (int k = 0; k < 3; ++k) g[0][k] = -(g[1][k] + g[2][k] + g[3][k]);
     FlowMaterial& mat = fm.materials[t.material];
-    const double kx = mat.K[0] / c.water_unit_weight, ky = mat.K[1] / c.water_unit_weight, kz = mat.K[2] / c.water_unit_weight;
+    const MaterialSpec& ms = material_of_tet(fields, t.in_mesh, *spec[t.material]);
+    const std::array<double, 3>& K = &ms == spec[t.material] ? mat.K : *ms.K;
+    const double porosity = &ms == spec[t.material] ? mat.porosity : *ms.porosity;
+    if (&ms != spec[t.material]) {
+      auto& sum = field_sums[t.material];
+      for (int d = 0; d < 3; ++d) sum[d] += vol * K[d];
+      sum[3] += vol * porosity, sum[4] += vol;
+    }
+    const double kx = K[0] / c.water_unit_weight, ky = K[1] / c.water_unit_weight, kz = K[2] / c.water_unit_weight;
     auto& a = fm.conductance_by_material[t.material];
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j)
         a[position(t.dof[i], t.dof[j])] += vol * (g[i][0] * kx * g[j][0] + g[i][1] * ky * g[j][1] + g[i][2] * kz * g[j][2]);
     const double zc = 0.25 * (x0[2] + x1[2] + x2[2] + x3[2]);
-    const double s = storage_coefficient(c, init, *spec[t.material], zc);
+    const double s = storage_coefficient(c, init, ms, zc);
     if (!(s > 0) || !std::isfinite(s))
       throw InputError(spec[t.material]->where,
                        fmt::format("material '{}': specific storage gamma_w (n beta + c_M) = {:g} 1/m at z = {:g} m is not a "
                                    "positive finite number (porosity {:g}, water compressibility {:g} 1/Pa, c_M {:g} 1/Pa)",
-                                   mat.name, s * c.water_unit_weight, zc, mat.porosity, c.water_compressibility,
-                                   s - mat.porosity * c.water_compressibility));
-    const double cm = s - mat.porosity * c.water_compressibility;
+                                   mat.name, s * c.water_unit_weight, zc, porosity, c.water_compressibility,
+                                   s - porosity * c.water_compressibility));
+    const double cm = s - porosity * c.water_compressibility;
     if (!cm_seen[t.material]) mat.cm_min = mat.cm_max = cm, cm_seen[t.material] = 1;
     mat.cm_min = std::min(mat.cm_min, cm), mat.cm_max = std::max(mat.cm_max, cm);
     for (int i = 0; i < 4; ++i) fm.storage[t.dof[i]] += 0.25 * vol * s;
   }
+  for (std::size_t m = 0; m < fm.materials.size(); ++m)
+    if (const auto& sum = field_sums[m]; sum[4] > 0) {
+      for (int d = 0; d < 3; ++d) fm.materials[m].K[d] = sum[d] / sum[4];
+      fm.materials[m].porosity = sum[3] / sum[4];
+    }
   return fm;
 }
 

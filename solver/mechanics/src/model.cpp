@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "ugs/formats/error.hpp"
+#include "ugs/meshing/material_fields.hpp"
 
 namespace ugs::mech {
 namespace {
@@ -101,7 +102,9 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
   if (mesh.num_nodes() >= (std::size_t(1) << 31) / 3)
     throw InputError("mesh", fmt::format("{} nodes exceed the 32-bit index range of this PETSc build", mesh.num_nodes()));
 
-  // Materials in case-file order; only those the mesh uses are validated and kept.
+  // Materials in the mesh's order; only those the mesh uses are validated and kept. A material
+  // with fields gets one entry per distinct set of its fields' values (index -1 here).
+  const MaterialFieldValues fields = material_field_values(mesh, cs);
   std::map<std::string, int> index;
   std::map<std::string, std::size_t> unknown;
   for (const auto& b : mesh.blocks) {
@@ -115,6 +118,10 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
       unknown[name] += b.size();
       continue;
     }
+    if (!spec->fields.empty()) {
+      index[name] = -1;
+      continue;
+    }
     index[name] = static_cast<int>(model.materials.size());
     model.materials.push_back(material_from_spec(*spec, cs));
   }
@@ -125,13 +132,30 @@ Model build_model(const Mesh& mesh, const CaseFile& cs, bool allow_interface_ele
   model.tets.reserve(mesh.count(ElementType::Tetrahedron));
   model.tet_material.reserve(mesh.count(ElementType::Tetrahedron));
   model.tet_tags.reserve(mesh.count(ElementType::Tetrahedron));
+  std::vector<int> copy_material(fields.specs.size(), -1);  // model material of each field copy
   for (const auto& b : mesh.blocks) {
     if (b.type != ElementType::Tetrahedron) continue;
     const int mat = index.at(material_of_entity(mesh, b.entity_dim, b.entity_tag));
     for (std::size_t i = 0; i < b.size(); ++i) {
       const auto e = b.element(i);
+      int m = mat;
+      if (m < 0) {
+        const auto c = static_cast<std::size_t>(fields.instance[model.tets.size()]);
+        if (copy_material[c] < 0) {
+          copy_material[c] = static_cast<int>(model.materials.size());
+          try {
+            model.materials.push_back(material_from_spec(fields.specs[c], cs));
+          } catch (const InputError& err) {
+            const Point3& x = fields.first_centroid[c];
+            const std::string what = err.where().empty() ? err.what() : std::string(err.what()).substr(err.where().size() + 2);
+            throw InputError(fields.specs[c].where, fmt::format("the fields' values at tetrahedron {} (centroid {:.2f}, {:.2f}, {:.2f}): {}",
+                                                                fields.first_tag[c], x[0], x[1], x[2], what));
+          }
+        }
+        m = copy_material[c];
+      }
       model.tets.push_back({e[0], e[1], e[2], e[3]});
-      model.tet_material.push_back(mat);
+      model.tet_material.push_back(m);
       model.tet_tags.push_back(b.tags[i]);
     }
   }

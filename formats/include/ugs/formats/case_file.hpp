@@ -19,6 +19,44 @@ enum class MaterialLaw {
   Hypoplastic,  // c_M from the law on virgin loading, c_M(sigma_max)/c_R on unloading/reloading
 };
 
+// One row of a table by depth of [initial_stress]: depth below surface_elevation_m [m], value (SI).
+struct DepthValue {
+  double depth = 0;
+  double value = 0;
+};
+
+// A material constant given as a field instead of a number (docs/case-file.md, "Properties that
+// vary in space"): its value in each tetrahedron of the material is scale x (the source's value at
+// the tetrahedron's centroid, or of the tetrahedron itself) x si. The sources:
+//   grdecl   an array of a GRDECL file by grid cell, located through the corner-point grid
+//            (SPECGRID/COORD/ZCORN/ACTNUM of `grid`, default the same file)
+//   init     an array of an ECLIPSE INIT file by active cell, located through the EGRID (`grid`,
+//            default CASE.EGRID beside CASE.INIT)
+//   table    rows (elevation or depth, value), linear between rows, at the centroid's elevation
+//   map      a map (IRAP classic or CPS-3 ASCII grid), bilinear at the centroid's x, y
+//   cells    a cell field of a ugs-fields HDF5 file, by element tag
+struct MaterialField {
+  enum class Source { Grdecl, Init, Table, Map, Cells };
+  Source source = Source::Table;
+  std::string key;                  // the material key it gives: "c_R", "K_m_per_s[2]"
+  std::string where;                // file:line of the value in the case
+  std::string file;                 // grdecl / init / map / cells file, resolved against the case
+  std::string grid;                 // grdecl: file with the grid; init: the EGRID ("" = the default)
+  std::string keyword;              // grdecl / init: the array; cells: the cell field
+  std::string date;                 // cells: the step's date ("" = the file's first step)
+  std::array<double, 3> offset_m{}; // grdecl / init: added to the grid's map coordinates
+  std::vector<DepthValue> rows;     // table: (elevation or depth [m], value), ascending
+  bool by_depth = false;            // table: rows by depth below [initial_stress] surface_elevation_m
+  double scale = 1.0;               // the factor ugs-calibrate and ugs-ensemble vary
+  double si = 1.0;                  // SI per unit of the source's values (E_MPa: 1e6)
+};
+
+// The keys of a [[material]] that may be fields ("K_m_per_s[0]" .. "[2]" for the conductivity).
+bool material_key_may_vary(const std::string& key);
+// Why `value` (SI) is not valid for the material key, or "" when it is (the ranges of the
+// numbers: biot in [0, 1], porosity in (0, 1), nu_z in (-1, 0.5), cm_b >= 0, the others > 0).
+std::string material_value_problem(const std::string& key, double value);
+
 struct MaterialSpec {
   std::string name;           // matches the mesh group mat:<name>
   std::string where;          // file:line, for later error messages
@@ -40,6 +78,13 @@ struct MaterialSpec {
   // azimuth and sigma'_v(z) stay global.
   std::optional<double> k_Hmax, k_hmin;
   bool own_stress_ratios() const { return k_Hmax || k_hmin; }
+  // Constants given as fields (docs/case-file.md); the member of a field-valued key holds NaN
+  // (its optional is set) until material_field_values (ugs/meshing/material_fields.hpp) gives
+  // each tetrahedron its own copy with numbers.
+  std::vector<MaterialField> fields;
+  const MaterialField* field(const std::string& key) const;
+  // Sets the member of `key` (material_key_may_vary) to `value` in SI.
+  void set_value(const std::string& key, double value);
 };
 
 struct PoolSpec {
@@ -60,12 +105,6 @@ struct PoolSpec {
 // The acceleration of gravity [m/s2] that turns densities (kg/m3) into gradients (Pa/m): the value
 // behind the default water unit weight, 9810 N/m3 = 1000 kg/m3 x 9.81 m/s2.
 inline constexpr double kGravity = 9.81;
-
-// One row of a table by depth of [initial_stress]: depth below surface_elevation_m [m], value (SI).
-struct DepthValue {
-  double depth = 0;
-  double value = 0;
-};
 
 struct InitialStressSpec {
   double surface_elevation = 0.0;         // m, where total stress and pore pressure vanish

@@ -30,6 +30,13 @@ struct HorizonGrid {
   }
 };
 
+// The grid's value at the map point (x, y): bilinear in the cell holding it (1e-9 of a node
+// spacing of slack at the edges). Value: `value` set; Outside: beyond the grid's nodes; Undefined:
+// a node with a non-zero weight is undefined. ugs-meshgen's horizons and the maps of material
+// fields (meshing/properties) are sampled by this one function.
+enum class GridPoint { Value, Outside, Undefined };
+GridPoint horizon_grid_value(const HorizonGrid& g, double x, double y, double& value);
+
 // The horizon file formats ugs-meshgen reads beside GDAL rasters, told by their first lines:
 // IRAP classic ASCII starts with the number -996, CPS-3 ASCII with FSASCI, ZMAP+ with "@name, GRID,"
 // (after '!' comment lines), GOCAD TSurf with "GOCAD TSurf".

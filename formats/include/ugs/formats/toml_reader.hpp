@@ -53,6 +53,13 @@ public:
                                                std::vector<std::string>* row_where = nullptr) const;
   std::optional<TomlTable> table_opt(const std::string& key) const;
   TomlTable table(const std::string& key) const;
+  // Whether the value of `key` is a table (an inline table { ... } included).
+  bool is_table(const std::string& key) const;
+  // The elements of an array, each wrapped (path "key[i]"), whatever their type.
+  std::vector<TomlTable> items(const std::string& key) const;
+  // For a wrapped element: whether it is a table; its number (nullopt when it is not a number).
+  bool is_table() const { return v_.is_table(); }
+  std::optional<double> as_number() const;
   // An array of tables ([[name]]); empty if absent.
   std::vector<TomlTable> tables(const std::string& key) const;
 

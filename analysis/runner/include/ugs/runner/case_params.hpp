@@ -4,6 +4,8 @@
 // by the `name` of its element (or by a number), an array of numbers by [i]:
 //   material.pool_c.c_R            initial_stress.k0            material.aquifer_pool_c.K_m_per_s[0]
 //   pool."Pool C".reference_pressure_MPa   (quotes for names with dots)
+// A constant given as a field (c_R = { grdecl = "x.GRDECL", keyword = "CR", scale = 1.0 }) is
+// varied through its scale factor: material.pool_c.c_R (or material.pool_c.c_R.scale) sets scale.
 // A parameter is one or more paths set to the same value, with bounds, optionally searched in log10:
 //   material.pool_c.c_R=2:6
 //   material.pool_c.c_R,material.aquifer_pool_c.c_R=2:6      (Pool C and its connected aquifer)

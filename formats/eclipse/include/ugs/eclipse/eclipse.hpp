@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "ugs/formats/corner_point_grid.hpp"
 #include "ugs/formats/mesh.hpp"
 
 namespace ugs::eclipse {
@@ -22,18 +23,10 @@ namespace ugs::eclipse {
 // bottom (k+1) face in the same order.
 using CellCorners = std::array<Point3, 8>;
 
-struct Grid {
-  std::string path;
-  std::array<int, 3> dims{};             // nx, ny, nz
-  std::vector<std::int32_t> active;      // per global cell (i fastest): active index, or -1
-  std::vector<std::uint32_t> global;     // per active cell: global index
-  std::vector<CellCorners> corners;      // per active cell, in the mesh frame (m, z up)
-  std::string length_unit;               // GRIDUNIT as written (METRES, FEET, CM)
-  bool mapaxes = false;                  // MAPAXES applied
+// The grid of an EGRID: a corner-point grid (the same cells a GRDECL gives, corner_point_grid.hpp)
+// and its non-neighbour connections.
+struct Grid : CornerPointGrid {
   std::size_t nnc = 0;                   // non-neighbour connections (faults) in the EGRID
-
-  std::size_t num_active() const { return global.size(); }
-  std::array<int, 3> ijk(std::uint32_t global_index) const;  // 0-based
 };
 
 // Reads the EGRID's global grid; `offset` (m) is added to every corner after MAPAXES and the flip
@@ -74,5 +67,18 @@ std::string default_restart(const std::string& egrid_path);
 
 // Pa per unit of the restart's pressure for INTEHEAD item 3; InputError for other values.
 double pressure_unit_pa(int units, const std::string& where);
+
+}  // namespace ugs::eclipse
+
+namespace ugs::eclipse {
+
+// An array of an INIT file (CASE.INIT, or formatted CASE.FINIT) per active cell of `grid`, as
+// written (PORO as a fraction, PERMX in mD, NTG, ...: no unit conversion). Arrays written per grid
+// cell (PORV) are reduced to the active ones. InputError naming the file: missing file, no such
+// array (naming the arrays there are), a count that is neither the grid's active nor total cells.
+std::vector<double> read_init_array(const std::string& init_path, const std::string& keyword, const Grid& grid);
+
+// The EGRID beside an INIT (CASE.EGRID or CASE.FEGRID), "" if none.
+std::string default_egrid(const std::string& init_path);
 
 }  // namespace ugs::eclipse

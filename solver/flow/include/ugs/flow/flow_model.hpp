@@ -32,8 +32,8 @@ inline constexpr std::uint32_t kNoDof = std::numeric_limits<std::uint32_t>::max(
 struct FlowMaterial {
   std::string name;                  // without "mat:"
   int pool = -1;                     // index of the pool it belongs to, -1 for an aquifer material
-  std::array<double, 3> K{};         // hydraulic conductivity [m/s] along x, y, z (aquifers)
-  double porosity = 0;
+  std::array<double, 3> K{};         // hydraulic conductivity [m/s] along x, y, z (aquifers); for
+  double porosity = 0;               // a material with fields: their volume-weighted means
   std::size_t tets = 0;              // tetrahedra in the mesh
   double cm_min = 0, cm_max = 0;     // range of c_M over its tetrahedra [1/Pa] (for reports)
 };
