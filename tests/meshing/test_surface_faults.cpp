@@ -524,6 +524,42 @@ TEST(SurfaceFaults, SticksMakeTheCylinder) {
   EXPECT_NE(e.find("crosses the stick of line"), std::string::npos) << e;
 }
 
+// ---- cost ---------------------------------------------------------------------------------------
+
+// What a surface's cut costs against today's planar faults, on finer blocks (run by hand:
+// --gtest_also_run_disabled_tests --gtest_filter=*Cost*; docs/faults.md gives the numbers).
+TEST(SurfaceFaults, DISABLED_CostAgainstPlanarFaults) {
+  for (int n : {16, 32, 48}) {
+    BoxMeshSpec spec;
+    spec.x = linspace(0, X1, n);
+    spec.y = linspace(0, Y1, n * 3 / 4);
+    spec.z = linspace(Z0, 0, n * 3 / 4);
+    spec.material = [](const Point3& c) { return c[2] > -1500 ? std::string("upper") : std::string("lower"); };
+    const Mesh base = make_box_mesh(spec);
+    const FaultTrace tr = dip_trace();
+    const std::vector<std::pair<std::string, FaultTrace>> cases{
+        {"dip and trace (2 panels)", tr},
+        {"planar TSurf (4 triangles)", surface_fault("f", trace_as_tsurf(tr))},
+        {"listric cylinder (144 triangles)", surface_fault("listric", cylinder())},
+        {"doubly curved (128 triangles)", surface_fault("bowl", grid_surface(9, 9, [](std::size_t i, std::size_t j) {
+                                                           const double z = 100 - 400.0 * static_cast<double>(i);
+                                                           const double y = -200 + 425.0 * static_cast<double>(j);
+                                                           return Point3{1000 + 0.25 * -z + 1.2e-4 * z * z +
+                                                                             1.5e-4 * (y - 1500) * (y - 1500) - 1e-4 * (y - 1500) * z,
+                                                                         y, z};
+                                                         }))}};
+    for (const auto& [what, f] : cases) {
+      Mesh m = base;
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto sum = cut_faults(m, {f});
+      const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("cost: %zu tetrahedra, %-34s %zu panels: %.3f s, %zu -> %zu tetrahedra, smallest dihedral %.3f deg\n",
+                  sum.tetrahedra_before, what.c_str(), sum.faults[0].panels, sec, sum.tetrahedra_before, sum.tetrahedra_after,
+                  sum.band_min_dihedral_deg);
+    }
+  }
+}
+
 // ---- bad input ---------------------------------------------------------------------------------
 
 std::string tsurf(const std::vector<Point3>& v, const std::vector<std::array<int, 3>>& t) {
