@@ -553,9 +553,10 @@ TEST(SurfaceFaults, DISABLED_CostAgainstPlanarFaults) {
       const auto t0 = std::chrono::steady_clock::now();
       const auto sum = cut_faults(m, {f});
       const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("cost: %zu tetrahedra, %-34s %zu panels: %.3f s, %zu -> %zu tetrahedra, smallest dihedral %.3f deg\n",
+      std::printf("cost: %zu tetrahedra, %-34s %zu panels: %.3f s, %zu -> %zu tetrahedra, smallest dihedral %.3f deg, "
+                  "%zu of %zu below the reference, %zu below the bound\n",
                   sum.tetrahedra_before, what.c_str(), sum.faults[0].panels, sec, sum.tetrahedra_before, sum.tetrahedra_after,
-                  sum.band_min_dihedral_deg);
+                  sum.band_min_dihedral_deg, sum.band_below_reference, sum.band_tetrahedra, sum.band_below_bound);
     }
   }
 }
