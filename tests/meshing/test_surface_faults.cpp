@@ -469,10 +469,18 @@ TEST(SurfaceFaults, BranchEndingOnAnotherAndDyingOut) {
 
 // ---- fault sticks ------------------------------------------------------------------------------
 
+// The files the tests write, in one folder removed when the program ends.
 std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("ugs_surface_faults_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir / name;
+  struct Folder {
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ugs_surface_faults_" + std::to_string(::getpid()));
+    ~Folder() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  static const Folder folder;
+  std::filesystem::create_directories(folder.dir);
+  return folder.dir / name;
 }
 
 void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
@@ -591,6 +599,18 @@ TEST(SurfaceFaults, BadSurfacesNameFileAndLine) {
   const FaultSurfaceInput ok = read_fault_surface(path.string());
   ASSERT_EQ(ok.cleaned.size(), 1u);
   EXPECT_NE(ok.cleaned[0].find("1 vertices at the same x, y, z"), std::string::npos) << ok.cleaned[0];
+  // Sticks files: a stick of one point, a line of four values, a last stick without its 999 line.
+  const auto sticks = scratch("bad.sticks");
+  auto sticks_err = [&](const std::string& text) {
+    write(sticks, text);
+    return error_of([&] { read_fault_surface(sticks.string()); });
+  };
+  const std::string sep = "999 999 999\n";
+  EXPECT_NE(sticks_err("0 0 0\n0 0 -100\n" + sep + "100 0 0\n" + sep).find("bad.sticks:4: a stick of one point"),
+            std::string::npos);
+  EXPECT_NE(sticks_err("0 0 0\n0 0 -100 5\n" + sep).find("bad.sticks:2: 4 values"), std::string::npos);
+  EXPECT_NE(sticks_err("0 0 0\n0 0 -100\n" + sep + "100 0 0\n100 0 -100\n").find("bad.sticks:4: the last stick has no 999"),
+            std::string::npos);
   // A surface entirely outside the model.
   FaultTrace far = surface_fault("far", grid_surface(2, 2, [](std::size_t i, std::size_t j) {
                                    return Point3{9000.0 + 500 * j, 500, i == 0 ? -100.0 : -1000.0};
