@@ -297,6 +297,8 @@ TEST(SurfaceFaultsCli, TSurfAndSticksThroughTheTools) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The second TFACE repeats the shared row's 5 vertices: merged, and said.
   EXPECT_NE(r.err.find("listric.ts: 5 vertices at the same x, y, z as an earlier one merged into it"), std::string::npos) << r.err;
+  // The cut's line per fault says it came from a surface: 10 strips of coplanar triangles, 10 panels.
+  EXPECT_NE(r.err.find("fault:listric              surface, 10 panel(s)"), std::string::npos) << r.err;
   const Mesh m = read_msh((c.dir / "model.msh").string());
   const Conformity k = check_conformity(m);
   EXPECT_EQ(k.over_shared, 0u);
