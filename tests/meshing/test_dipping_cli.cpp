@@ -2,7 +2,9 @@
 // a 35-degree thrust, a listric fault and a steep fault ending against the thrust; then
 // ugs-faultinsert. The faces lie on the dipping planes, the mesh conforms, faultinsert inserts the
 // faults without a distance warning; bad input (dip outside (0, 90], depth range outside the model,
-// trace leaving the plan) exits 2 with one line naming the fault and writes nothing.
+// trace leaving the plan) exits 2 with one line naming the fault and writes nothing. Faults as
+// surfaces (issue 40): a listric GOCAD TSurf of two TFACEs and a fault given by sticks, dying out
+// inside the model, cut across both units and inserted; bad surfaces exit 2 naming file and line.
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -16,6 +18,7 @@
 #include "run_tool.hpp"
 #include "strata_toml.hpp"
 #include "ugs/formats/msh.hpp"
+#include "ugs/meshing/fault_surface_input.hpp"
 
 namespace fs = std::filesystem;
 using namespace ugs;
@@ -209,3 +212,153 @@ TEST(DippingFaultsCli, SampleCutHasNoDegenerateTetrahedra) {
 }
 
 }  // namespace
+
+namespace {
+
+// A GOCAD TSurf of a grid of points, rows split into two TFACEs at row `split` (the shared row is
+// given again as VRTX in the second: merged by coordinates, and said). PVRTX carry a property.
+std::string tsurf_grid(const std::vector<std::vector<Point3>>& rows, std::size_t split) {
+  std::string s = "GOCAD TSurf 1\nHEADER {\nname: listric\n}\nPROPERTIES throw\nGOCAD_ORIGINAL_COORDINATE_SYSTEM\n"
+                  "NAME Default\nAXIS_UNIT \"m\" \"m\" \"m\"\nZPOSITIVE Elevation\nEND_ORIGINAL_COORDINATE_SYSTEM\n";
+  long id = 1;
+  for (auto [r0, r1] : {std::pair{std::size_t{0}, split}, std::pair{split, rows.size() - 1}}) {
+    s += "TFACE\n";
+    const long first = id;
+    for (std::size_t i = r0; i <= r1; ++i)
+      for (const auto& p : rows[i]) s += fmt::format("PVRTX {} {:.6f} {:.6f} {:.6f} 0.25\n", id++, p[0], p[1], p[2]);
+    const std::size_t nc = rows[0].size();
+    auto at = [&](std::size_t i, std::size_t j) { return first + static_cast<long>((i - r0) * nc + j); };
+    for (std::size_t i = r0; i < r1; ++i)
+      for (std::size_t j = 0; j + 1 < nc; ++j) {
+        s += fmt::format("TRGL {} {} {}\n", at(i, j), at(i, j + 1), at(i + 1, j + 1));
+        s += fmt::format("TRGL {} {} {}\n", at(i, j), at(i + 1, j + 1), at(i + 1, j));
+      }
+  }
+  return s + "END\n";
+}
+
+// Listric: a cylinder about the axis x = 5000, z = 0 (along y), radius 3,000 m, vertical at the top
+// (phi 0) to 15 degrees at phi 75, begun above the ground and run past the plan's ends in y.
+std::vector<std::vector<Point3>> listric_rows() {
+  std::vector<std::vector<Point3>> rows;
+  for (int i = 0; i <= 10; ++i) {
+    const double phi = (-5.0 + 8.0 * i) * M_PI / 180;
+    rows.emplace_back();
+    for (int j = 0; j <= 4; ++j) rows.back().push_back({5000 - 3000 * std::cos(phi), -200 + 1100.0 * j, -3000 * std::sin(phi)});
+  }
+  return rows;
+}
+
+// Sticks of a fault dipping 60 degrees west, from -100 to -2,000 m, between y = 500 and 3,500 m:
+// it dies out inside the model on every side.
+std::string sticks_text() {
+  std::string s = "# fault sticks, IRAP classic lines\n";
+  for (int k = 0; k < 4; ++k) {
+    for (double z : {-100.0, -1000.0, -2000.0})
+      s += fmt::format("{:.6f} {:.6f} {:.6f}\n", 1500 + z / std::tan(M_PI / 3), 500.0 + 1000 * k, z);
+    s += "999.000000 999.000000 999.000000\n";
+  }
+  return s;
+}
+
+// Distance from x to a triangulated surface: to the nearest triangle's plane where x projects
+// inside it (within 1 mm), else the distance outside.
+double surface_distance(const TriangulatedSurface& s, const Point3& x) {
+  double best = 1e300;
+  for (const auto& t : s.triangles) {
+    const Point3 &a = s.vertices[t[0]], &b = s.vertices[t[1]], &c = s.vertices[t[2]];
+    auto sub = [](const Point3& p, const Point3& q) { return Point3{p[0] - q[0], p[1] - q[1], p[2] - q[2]}; };
+    auto cross = [](const Point3& p, const Point3& q) {
+      return Point3{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+    };
+    auto dot = [](const Point3& p, const Point3& q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; };
+    Point3 n = cross(sub(b, a), sub(c, a));
+    const double l = std::sqrt(dot(n, n));
+    n = {n[0] / l, n[1] / l, n[2] / l};
+    double out = 0;
+    for (const auto& [p, q] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
+      Point3 o = cross(sub(*q, *p), n);
+      const double lo = std::sqrt(dot(o, o));
+      out = std::max(out, dot(o, sub(x, *p)) / lo);
+    }
+    best = std::min(best, std::max(std::abs(dot(n, sub(x, a))), out > 1e-3 ? out : 0.0));
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(SurfaceFaultsCli, TSurfAndSticksThroughTheTools) {
+  Case c = make_case("surfaces", {feature(R"("name": "listric", "surface": "listric.ts", "size_m": 300)", "[[2000, 0], [2000, 4000]]"),
+                                   feature(R"("name": "sticks", "surface": "sticks.txt")", "[[1440, 500], [1440, 3500]]")});
+  std::ofstream(c.dir / "listric.ts") << tsurf_grid(listric_rows(), 5);
+  std::ofstream(c.dir / "sticks.txt") << sticks_text();
+  auto r = c.run_meshgen();
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The second TFACE repeats the shared row's 5 vertices: merged, and said.
+  EXPECT_NE(r.err.find("listric.ts: 5 vertices at the same x, y, z as an earlier one merged into it"), std::string::npos) << r.err;
+  // The cut's line per fault says it came from a surface: 10 strips of coplanar triangles, 10 panels.
+  EXPECT_NE(r.err.find("fault:listric              surface, 10 panel(s)"), std::string::npos) << r.err;
+  const Mesh m = read_msh((c.dir / "model.msh").string());
+  const Conformity k = check_conformity(m);
+  EXPECT_EQ(k.over_shared, 0u);
+  EXPECT_EQ(k.untagged_outer, 0u);
+  EXPECT_EQ(k.fault_not_face, 0u);
+  EXPECT_EQ(k.nonpositive, 0u);
+  EXPECT_NEAR(k.volume, 6000.0 * 4000 * 3000, 1e-6 * 6000.0 * 4000 * 3000);
+  for (const auto& [name, file] : {std::pair{"listric", "listric.ts"}, std::pair{"sticks", "sticks.txt"}}) {
+    const auto surface = read_fault_surface((c.dir / file).string());
+    std::size_t faces = 0;
+    double worst = 0;
+    for (const auto& b : m.blocks) {
+      if (m.physical_name_of(b.entity_dim, b.entity_tag) != std::string("fault:") + name) continue;
+      faces += b.size();
+      for (auto v : b.nodes) worst = std::max(worst, surface_distance(surface.mesh, m.nodes[v]));
+    }
+    std::printf("%s: %zu faces, nodes within %.2e m of the surface\n", name, faces, worst);
+    EXPECT_GT(faces, 50u) << name;
+    EXPECT_LE(worst, 1e-6) << name;  // the model's coordinates are 6 km: 1e-6 m is 1.7e-10 of it
+  }
+  r = run("cd " + c.dir.string() + " && " + tool("ugs-faultinsert") + " model.msh --faults faults.geojson -o faulted.msh");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("2 faults"), std::string::npos) << r.err;
+}
+
+TEST(SurfaceFaultsCli, BadSurfacesExitTwoNamingFileAndLine) {
+  auto bad = [](const std::string& tag, const std::string& file, const std::string& text, const std::string& what) {
+    Case c = make_case(tag, {feature(R"("name": "bad", "surface": ")" + file + R"(")", "[[1000, 1000], [2000, 1000]]")});
+    std::ofstream(c.dir / file) << text;
+    const auto r = c.run_meshgen();
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(c.dir / "model.msh"));
+  };
+  auto rows = listric_rows();
+  std::string ts = tsurf_grid(rows, 5);
+  // A third triangle on the edge from vertex 1 to 7 (non-manifold), at the end of the first TFACE.
+  std::string nm = ts;
+  nm.insert(nm.find("TFACE", nm.find("TFACE") + 5), "TRGL 1 7 13\n");
+  bad("nonmanifold", "bad.ts", nm, "non-manifold edge");
+  // Inconsistent orientation: one triangle's corners reversed.
+  std::string flip = ts;
+  const auto t1 = flip.find("TRGL 1 2 7");
+  flip.replace(t1, 10, "TRGL 2 1 7");
+  bad("orientation", "bad.ts", flip, "inconsistent orientation");
+  // A surface entirely below the model.
+  for (auto& row : rows)
+    for (auto& p : row) p[2] -= 10000;
+  bad("below", "bad.ts", tsurf_grid(rows, 5), "lies outside the model");
+  // Crossing sticks: the second stick given twice as far along the strike as the third.
+  std::string st = sticks_text();
+  const auto s1 = st.find("999.000000 999.000000 999.000000\n") + 33;
+  const auto s2 = st.find("999.000000 999.000000 999.000000\n", s1) + 33;
+  const auto s3 = st.find("999.000000 999.000000 999.000000\n", s2) + 33;
+  st = st.substr(0, s1) + st.substr(s2, s3 - s2) + st.substr(s1, s2 - s1) + st.substr(s3);
+  bad("crossing", "bad.sticks", st, "crosses the stick of line");
+  // Fields that contradict the surface.
+  Case c = make_case("both", {feature(R"("name": "bad", "surface": "x.ts", "dip_deg": 45)", "[[1000, 1000], [2000, 1000]]")});
+  const auto r = c.run_meshgen();
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("dip_deg and surface exclude each other"), std::string::npos) << r.err;
+}

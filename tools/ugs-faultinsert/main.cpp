@@ -105,6 +105,18 @@ int main(int argc, char** argv) {
       for (const auto& rec : ugs::read_fault_file(opt.faults, wkt)) {
         if (!only.empty() && std::find(only.begin(), only.end(), rec.name) == only.end()) continue;
         const bool mesh_has = std::find(in_mesh.begin(), in_mesh.end(), rec.name) != in_mesh.end();
+        if (!rec.surface.empty()) {  // a surface fault (docs/faults.md, "Faults as surfaces"): cut by ugs-meshgen
+          if (!mesh_has)
+            throw ugs::InputError(rec.where, fmt::format("fault '{}' is given as a surface ({}) and the mesh has no "
+                                                         "fault:{} group: cut it into the mesh with ugs-meshgen first",
+                                                         rec.name, rec.surface, rec.name));
+          const ugs::FaultTrace tr = ugs::fault_trace_from_record(rec);
+          ins.reference_normals[rec.name] = ugs::surface_reference_normal(tr.surface->mesh);
+          for (const auto& c : tr.surface->cleaned) ugs::cli::warning("fault '{}': {}", rec.name, c);
+          ugs::cli::detail("fault '{}': the mesh's fault:{} triangles; reference normal from its surface {}", rec.name,
+                           rec.name, rec.surface);
+          continue;
+        }
         const bool full = rec.has_depth_range() && rec.has_dip() && rec.dip_dir_deg;
         if (mesh_has && !full) {
           if (const auto n = ugs::record_reference_normal(rec)) ins.reference_normals[rec.name] = *n;

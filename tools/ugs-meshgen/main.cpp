@@ -133,10 +133,12 @@ int main(int argc, char** argv) {
                        "against tearing, {} short edges collapsed, {} smoothing moves (on-plane tolerance {:.2g} m)",
                        t, cut.tetrahedra_before, cut.tetrahedra_after, cut.nodes_after - cut.nodes_before, cut.snapped,
                        cut.untorn, cut.collapsed, cut.smoothed, cut.tolerance);
-      for (const auto& f : cut.faults) {
-        ugs::cli::info("fault:{:<20} dipping, {} panel(s): {} triangles, {:.4g} km2, z {:.1f} .. {:.1f} m, off-plane "
+      for (std::size_t i = 0; i < cut.faults.size(); ++i) {
+        const auto& f = cut.faults[i];  // in the order of model.cut_faults
+        ugs::cli::info("fault:{:<20} {}, {} panel(s): {} triangles, {:.4g} km2, z {:.1f} .. {:.1f} m, off-plane "
                        "{:.1e} m, normal {:.1e} deg",
-                       f.name, f.panels, f.triangles, f.area * 1e-6, f.zmax, f.zmin, f.max_distance, f.max_angle_deg);
+                       f.name, model.cut_faults[i].surface ? "surface" : "dipping", f.panels, f.triangles, f.area * 1e-6,
+                       f.zmax, f.zmin, f.max_distance, f.max_angle_deg);
         if (f.boundary_faces > 0)
           ugs::cli::warning("fault '{}': {} faces of its surface lie on the model boundary and are not part of it",
                             f.name, f.boundary_faces);

@@ -74,6 +74,9 @@ void check_fault_trace(FaultTrace& tr) {
   if (tr.name.empty()) throw InputError(tr.where, "a fault trace has no name");
   for (double v : {tr.top, tr.bottom, tr.dip_deg, tr.dip_dir_deg, tr.trace_z})
     if (!std::isfinite(v)) throw fail("top_m, bottom_m, dip_deg, dip_dir_deg and trace_z_m must be finite numbers");
+  if (tr.surface && !(tr.top > tr.bottom))
+    throw fail(fmt::format("its surface is flat (every vertex at elevation {:.1f} m): a fault surface must span a depth range",
+                           tr.top));
   if (!(tr.top > tr.bottom))
     throw fail(fmt::format("top_m ({:.1f}) must lie above bottom_m ({:.1f})", tr.top, tr.bottom));
   if (!(tr.dip_deg > 0 && tr.dip_deg <= 90))

@@ -1,8 +1,10 @@
 // Fault traces from any OGR vector file (GeoJSON, GeoPackage, Shapefile, ...), through geodata.
 #include <cmath>
 #include <cstdlib>
-#include <optional>
+#include <filesystem>
+#include <limits>
 #include <map>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -106,6 +108,20 @@ std::vector<FaultRecord> read_fault_file(const std::string& path, const std::str
       r.listric_dip = *ld;
     }
     if (auto e = f.text_of("ends_against"); e && !e->empty()) r.ends_against = e->rfind("fault:", 0) == 0 ? e->substr(6) : *e;
+    if (auto sf = f.text_of("surface"); sf && !sf->empty()) {
+      // The surface is the fault: the fields that build one from the trace would contradict it.
+      for (const auto& [given, field] : {std::pair{r.top.has_value(), "top_m"}, std::pair{r.bottom.has_value(), "bottom_m"},
+                                         std::pair{r.dip_deg.has_value(), "dip_deg"},
+                                         std::pair{r.dip_dir_deg.has_value(), "dip_dir_deg"},
+                                         std::pair{r.trace_z.has_value(), "trace_z_m"}, std::pair{lb.has_value(), "listric_bottom_m"},
+                                         std::pair{!r.ends_against.empty(), "ends_against"}})
+        if (given)
+          throw InputError(r.where, fmt::format("{}: {} and surface exclude each other (the surface {} is the fault's "
+                                                "geometry: drop {})",
+                                                who, field, *sf, field));
+      const std::filesystem::path sp(*sf);
+      r.surface = sp.is_absolute() ? sp.string() : (std::filesystem::path(path).parent_path() / sp).string();
+    }
     if (f.lines.empty())
       throw InputError(r.where, fmt::format("{}: the feature is not a line (fault traces are (multi)line strings)", who));
     for (const auto& l : f.lines) r.lines.emplace_back(l.begin(), l.end());
@@ -121,6 +137,28 @@ FaultTrace fault_trace_from_record(const FaultRecord& r, const std::string& why)
   FaultTrace t;
   t.where = r.where;
   t.name = r.name;
+  if (!r.surface.empty()) {
+    std::shared_ptr<FaultSurfaceInput> s;
+    try {
+      s = std::make_shared<FaultSurfaceInput>(read_fault_surface(r.surface));
+    } catch (const InputError& e) {
+      // The surface file's own "file:line" stays first: the line at fault is there.
+      std::string what = e.what();
+      if (!e.where().empty()) what = what.substr(e.where().size() + 2);
+      throw InputError(e.where(), fmt::format("{} (the surface of fault '{}')", what, r.name));
+    }
+    t.top = -std::numeric_limits<double>::infinity();
+    t.bottom = std::numeric_limits<double>::infinity();
+    for (const auto& p : s->mesh.vertices) {
+      t.top = std::max(t.top, p[2]);
+      t.bottom = std::min(t.bottom, p[2]);
+    }
+    t.trace_z = t.top;
+    t.parts = r.lines;
+    t.surface = std::move(s);
+    check_fault_trace(t);
+    return t;
+  }
   auto need = [&](const std::optional<double>& v, const char* field) {
     if (!v)
       throw InputError(t.where, fmt::format("fault '{}': missing field '{}' ({} name, top_m, bottom_m, dip_deg, dip_dir_deg)",

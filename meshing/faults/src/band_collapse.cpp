@@ -280,7 +280,7 @@ bool BandImprover::try_collapse(std::uint32_t b, std::uint32_t a) {
   for (auto g : node_faults_[b])
     if (!has(fa, g)) fa.push_back(g);
   std::sort(fa.begin(), fa.end());
-  for (const auto& [t, e] : changed) {
+  auto four_on_one = [&](const Tet& e) {
     std::vector<std::uint32_t> common = fa;
     for (auto w : e) {
       if (w == a) continue;
@@ -289,8 +289,15 @@ bool BandImprover::try_collapse(std::uint32_t b, std::uint32_t a) {
                             std::back_inserter(next));
       common = std::move(next);
     }
-    if (!common.empty()) return undo();
-  }
+    return !common.empty();
+  };
+  for (const auto& [t, e] : changed)
+    if (four_on_one(e)) return undo();
+  // a's own tetrahedra too when a takes a fault it was not on (on a curved fault, three of their
+  // nodes may already lie on it without the tetrahedron being flat).
+  if (fa.size() > node_faults_[a].size())
+    for (auto t : tets_of_[a])
+      if (!has(s_.tets[t], b) && four_on_one(s_.tets[t])) return undo();
   for (auto t : tets_of_[b])
     if (has(s_.tets[t], a)) tet_dead_[t] = 1;
   for (auto i : tris_of_[b])

@@ -101,14 +101,19 @@ bool panel_contains(const CutPanel& p, const Point3& x, double tol) {
 }
 
 std::vector<CutPanel> fault_cut_panels(const FaultTrace& tr, const std::vector<FaultTrace>& all) {
-  if (tr.ends_against.empty()) return plain_panels(tr);
   const std::string who = fmt::format("fault '{}'", tr.name);
+  if (tr.surface) {
+    if (!tr.ends_against.empty())
+      throw InputError(tr.where, fmt::format("{}: a fault given as a surface ends where its surface ends (drop ends_against)", who));
+    return fault_cut::surface_panels(tr);
+  }
+  if (tr.ends_against.empty()) return plain_panels(tr);
   const FaultTrace* other = nullptr;
   for (const auto& f : all)
     if (f.name == tr.ends_against) other = &f;
   if (!other) throw InputError(tr.where, fmt::format("{}: ends_against names fault '{}', which is not given", who, tr.ends_against));
   if (other->name == tr.name) throw InputError(tr.where, fmt::format("{}: a fault cannot end against itself", who));
-  const auto target = plain_panels(*other);
+  const auto target = other->surface ? fault_cut::surface_panels(*other) : plain_panels(*other);
   const double zmid = 0.5 * (tr.top + tr.bottom);
   // The trace end nearest the other fault (at mid-depth) and the panel of the other fault there.
   std::size_t best_part = 0;

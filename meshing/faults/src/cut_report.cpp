@@ -58,7 +58,19 @@ void measure_faults(const Cutter& cut, const std::vector<FaultTrace>& traces, co
       const double a = norm(nrm);
       r.area += 0.5 * a;
       double best_d = std::numeric_limits<double>::infinity(), best_ang = 0;
+      // Against the panels whose bounds hold the face's centroid (where it was collected: of a
+      // surface's many triangles, another one's plane may pass nearer); all of them if none does.
+      Point3 cen{0, 0, 0};
+      for (auto v : tri) cen = add(cen, scaled(X[v], 1.0 / 3));
+      bool any_holds = false;
+      auto holds = [&](const CutPanel& p) {
+        for (const auto& b : p.bounds)
+          if (dot(b.m, cen) > b.d + sum.tolerance) return false;
+        return true;
+      };
+      for (const auto& p : panels[f]) any_holds = any_holds || holds(p);
       for (const auto& p : panels[f]) {
+        if (any_holds && !holds(p)) continue;
         double d = 0;
         for (auto v : tri) d = std::max(d, std::abs(dot(p.n, X[v]) - p.c));
         if (d < best_d) {

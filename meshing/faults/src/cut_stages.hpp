@@ -16,6 +16,8 @@ class Cutter;
 // cut_panels.cpp: every trace's panels (fault_cut_panels), in the traces' order; InputError when the
 // mesh already has the group fault:<name>.
 std::vector<std::vector<CutPanel>> panels_of(const Mesh& mesh, const std::vector<FaultTrace>& traces);
+// cut_surface_panels.cpp: the panels of a fault given as a surface (trace.surface), one per triangle.
+std::vector<CutPanel> surface_panels(const FaultTrace& trace);
 
 // cut_fault_faces.cpp: per fault, the faces lying in its panels (each once; those on the model's
 // boundary counted, not kept) become its group; a report per fault is started. Returns the names.

@@ -494,6 +494,17 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
   if (fault_features)
     for (const auto& feat : *fault_features) {
       const FaultRange* r = table_of(feat.name);
+      if (!feat.surface.empty()) {  // a surface (docs/faults.md, "Faults as surfaces"): it is the geometry
+        if (r && r->has_dip())
+          throw InputError(r->where, fmt::format("fault '{}' is given as a surface ({}): its [[fault]] table cannot give "
+                                                 "it a dip",
+                                                 feat.name, feat.surface));
+        FaultTrace tr = fault_trace_from_record(feat);
+        for (const auto& c : tr.surface->cleaned) pm.warnings.push_back(fmt::format("fault '{}': {}", tr.name, c));
+        cut_names.insert(tr.name);
+        pm.cut_faults.push_back(std::move(tr));
+        continue;
+      }
       if (!feat.has_dip() && !(r && r->has_dip())) continue;
       FaultTrace tr;
       if (feat.has_dip()) {
@@ -564,6 +575,15 @@ PreparedModel prepare_model(const Strata& strata, const Plan& plan) {
     };
     for (const auto& tr : pm.cut_faults) {
       const std::string who = fmt::format("fault '{}'", tr.name);
+      if (tr.surface) {  // only its part inside the model is cut; the cut refuses one that misses the mesh
+        if (tr.bottom > ztop || tr.top < zbot)
+          throw InputError(tr.where, fmt::format("{}: its surface ({:.1f} .. {:.1f} m) lies outside the model ({:.1f} .. "
+                                                 "{:.1f} m)",
+                                                 who, tr.top, tr.bottom, ztop, zbot));
+        pm.notes.push_back(fmt::format("{}: a {} of {} triangles ({:.1f} .. {:.1f} m), cut into the layered mesh", who,
+                                       tr.surface->format, tr.surface->mesh.triangles.size(), tr.top, tr.bottom));
+        continue;
+      }
       if (tr.bottom < zbot - 1e-6 * scale || tr.top > ztop + 1e-6 * scale || tr.bottom > ztop || tr.top < zbot)
         throw InputError(tr.where, fmt::format("{}: its depth range {:.1f} .. {:.1f} m lies outside the model ({:.1f} .. "
                                                "{:.1f} m)",

@@ -9,11 +9,13 @@
 // (segment, piece) pair is a planar panel and successive pieces meet along horizontal lines.
 #pragma once
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "ugs/formats/mesh.hpp"
+#include "ugs/meshing/fault_surface_input.hpp"
 
 namespace ugs {
 
@@ -32,6 +34,10 @@ struct FaultTrace {
   };
   std::vector<Piece> pieces;
   std::string ends_against;                          // another fault this one ends against ("" = none)
+  // A fault given as a surface (docs/faults.md, "Faults as surfaces"): its triangles are the cut's
+  // panels; top and bottom are its elevation range, parts the feature's line (ugs-mesh2d's only),
+  // the dip fields unused.
+  std::shared_ptr<const FaultSurfaceInput> surface;
 
   bool planar() const { return pieces.size() <= 1; }
   bool vertical() const;                             // every piece has dip 90
@@ -59,7 +65,9 @@ std::vector<FaultTrace> read_fault_traces(const std::string& path, const std::st
 // ("fault:" prefix dropped, unique in the file); the other fields are optional, and each one given
 // is checked the same way for every tool: top_m, bottom_m (top_m >= bottom_m), dip_deg in (0, 90],
 // dip_dir_deg, trace_z_m, listric_bottom_m and listric_dip_deg (lists of one length, together),
-// size_m > 0, ends_against (text). Numbers may be stored as text ("35"); all must be finite.
+// size_m > 0, ends_against (text), surface (a GOCAD TSurf or fault sticks file, relative to the faults
+// file's folder; then top_m, bottom_m, the dip fields and ends_against must be absent: the surface
+// is the fault). Numbers may be stored as text ("35"); all must be finite.
 struct FaultRecord {
   std::string name;
   std::string where;                                  // "faults.geojson: feature 3"
@@ -67,6 +75,7 @@ struct FaultRecord {
   std::optional<double> top, bottom, dip_deg, dip_dir_deg, trace_z, size;
   std::vector<double> listric_bottom, listric_dip;
   std::string ends_against;
+  std::string surface;                                // path of its TSurf or sticks file ("" = none)
   bool has_dip() const { return dip_deg.has_value() || !listric_dip.empty(); }
   bool has_depth_range() const { return top.has_value() && bottom.has_value(); }
 };
@@ -74,6 +83,8 @@ std::vector<FaultRecord> read_fault_file(const std::string& path, const std::str
                                          const std::string& name_field = "name");
 // The trace of a record, for a tool that builds the surface from the file: needs top_m, bottom_m,
 // dip_deg (or the listric fields) and dip_dir_deg; `why` says what it is needed for in the message.
+// A record with `surface`: the surface read and checked (read_fault_surface), top and bottom its
+// elevation range.
 FaultTrace fault_trace_from_record(const FaultRecord& record, const std::string& why = "a trace needs");
 // Side 1 -> side 2 reference normal of a record for a fault whose surface comes from the mesh:
 // from dip_deg (90 when absent: ugs-meshgen builds faults without a dip vertical) and dip_dir_deg;

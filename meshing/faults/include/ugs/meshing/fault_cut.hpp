@@ -1,6 +1,7 @@
 // Dipping faults made of tetrahedron faces (docs/dipping-faults.md): a conforming cut of a
 // tetrahedral mesh by the planar panels of fault surfaces (fault_traces.hpp: a trace, a dip, a dip
-// direction and a depth range, or listric pieces down-dip).
+// direction and a depth range, or listric pieces down-dip; or a triangulated surface, each triangle
+// a panel: docs/faults.md, "Faults as surfaces").
 //
 // Each panel is a convex polygon Q = plane P ∩ half-spaces (depth limits, the vertical planes
 // through the trace's vertices along the dip, and for a fault that ends against another the other
@@ -38,7 +39,8 @@ struct CutPanel {
   std::size_t piece = 0, segment = 0;
 };
 
-// The panels of a trace. A fault with `ends_against` is extended past the other fault (found in
+// The panels of a trace (of a fault given as a surface: one per triangle, bounded by the planes
+// through its edges, cut_surface_panels.cpp). A fault with `ends_against` is extended past the other fault (found in
 // `all` by name) along its last segment at that end and bounded by the other fault's plane.
 // InputError (naming the fault) when the other fault is missing or the two run parallel.
 std::vector<CutPanel> fault_cut_panels(const FaultTrace& trace, const std::vector<FaultTrace>& all);
