@@ -19,7 +19,7 @@ add_subdirectory(formats)
 set(_m ${PROJECT_SOURCE_DIR}/meshing)
 add_library(ugs_fuzz_readers STATIC
   ${_m}/layers/src/strata.cpp ${_m}/layers/src/natural_neighbour.cpp ${_m}/layers/src/surface_stack.cpp
-  ${_m}/layers/src/horizon_grids.cpp
+  ${_m}/layers/src/horizon_grids.cpp ${_m}/common/src/surface_checks.cpp
   ${_m}/plan/src/plan.cpp ${_m}/plan/src/plan_inputs.cpp
   ${_m}/common/src/fault_traces.cpp ${_m}/common/src/fault_traces_ogr.cpp ${_m}/common/src/geodata.cpp
   ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
@@ -48,7 +48,8 @@ target_include_directories(ugs_fuzz_seismicity PUBLIC ${PROJECT_SOURCE_DIR}/anal
 target_link_libraries(ugs_fuzz_seismicity PUBLIC ugs_formats ugs_fields_serial)
 
 set(_ugs_fuzz_targets "")
-foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params horizon_grid tsurf zmap seismicity)
+foreach(name msh hdf5_fields csv ps case_file schedule strata ogr ensemble_spec case_params horizon_grid tsurf zmap seismicity
+             grdecl fault_sticks)
   add_executable(fuzz_${name} ${CMAKE_CURRENT_LIST_DIR}/targets/fuzz_${name}.cpp)
   target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
   target_link_libraries(fuzz_${name} PRIVATE ugs_fuzz_readers ugs_formats)

@@ -18,13 +18,14 @@ import sys
 import time
 
 TARGETS = ["msh", "hdf5_fields", "csv", "ps", "case_file", "schedule", "strata", "ogr", "ensemble_spec", "case_params",
-           "horizon_grid", "tsurf", "zmap", "seismicity"]
+           "horizon_grid", "tsurf", "zmap", "seismicity", "grdecl", "fault_sticks"]
 # --fixed-runs (the test suite's run): a fixed number of executions per target instead of a time, so
 # that with the fixed seed the same inputs are tried on a fast and on a busy machine and the suite
 # cannot turn red by chance. About 5 s of each target on a busy 2-core machine.
 FIXED_RUNS = {"msh": 60000, "hdf5_fields": 1000, "csv": 20000, "ps": 400, "case_file": 300, "schedule": 400,
               "strata": 600, "ogr": 1200,
-              "ensemble_spec": 600, "case_params": 50, "horizon_grid": 400, "tsurf": 600, "zmap": 400, "seismicity": 150}
+              "ensemble_spec": 600, "case_params": 50, "horizon_grid": 400, "tsurf": 600, "zmap": 400, "seismicity": 150,
+              "grdecl": 3000, "fault_sticks": 5000}
 DICTS = {"msh": "msh.dict", "case_file": "toml.dict", "strata": "toml.dict", "ogr": "geojson.dict",
          "csv": "csv.dict", "ps": "csv.dict", "schedule": "csv.dict", "ensemble_spec": "ensemble.dict",
          "case_params": "case_params.dict", "horizon_grid": "horizon.dict", "tsurf": "horizon.dict",
