@@ -20,6 +20,7 @@ set(_m ${PROJECT_SOURCE_DIR}/meshing)
 add_library(ugs_fuzz_readers STATIC
   ${_m}/layers/src/strata.cpp ${_m}/layers/src/natural_neighbour.cpp ${_m}/layers/src/surface_stack.cpp
   ${_m}/layers/src/horizon_grids.cpp ${_m}/common/src/surface_checks.cpp
+  ${_m}/common/src/fault_surface_input.cpp
   ${_m}/plan/src/plan.cpp ${_m}/plan/src/plan_inputs.cpp
   ${_m}/common/src/fault_traces.cpp ${_m}/common/src/fault_traces_ogr.cpp ${_m}/common/src/geodata.cpp
   ${PROJECT_SOURCE_DIR}/solver/flow/src/schedule.cpp
