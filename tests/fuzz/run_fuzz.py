@@ -25,7 +25,7 @@ TARGETS = ["msh", "hdf5_fields", "csv", "ps", "case_file", "schedule", "strata",
 FIXED_RUNS = {"msh": 60000, "hdf5_fields": 1000, "csv": 20000, "ps": 400, "case_file": 300, "schedule": 400,
               "strata": 600, "ogr": 1200,
               "ensemble_spec": 600, "case_params": 50, "horizon_grid": 400, "tsurf": 600, "zmap": 400, "seismicity": 150,
-              "grdecl": 3000, "fault_sticks": 5000}
+              "grdecl": 20000, "fault_sticks": 1000}
 DICTS = {"msh": "msh.dict", "case_file": "toml.dict", "strata": "toml.dict", "ogr": "geojson.dict",
          "csv": "csv.dict", "ps": "csv.dict", "schedule": "csv.dict", "ensemble_spec": "ensemble.dict",
          "case_params": "case_params.dict", "horizon_grid": "horizon.dict", "tsurf": "horizon.dict",
