@@ -10,15 +10,6 @@
 namespace ugs {
 namespace {
 
-std::string upper_trimmed(std::string s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
-  std::size_t b = 0;
-  while (b < s.size() && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  s.erase(0, b);
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
-
 const GrdeclKeyword& required(const GrdeclFile& f, const std::string& name, std::size_t count, const std::string& what) {
   const GrdeclKeyword* k = f.find(name);
   if (!k) throw InputError(f.path, fmt::format("no {} keyword (expected {}; keywords: {})", name, what, f.names()));
@@ -32,6 +23,15 @@ const GrdeclKeyword& required(const GrdeclFile& f, const std::string& name, std:
 std::array<int, 3> CornerPointGrid::ijk(std::uint32_t g) const {
   const auto nx = static_cast<std::uint32_t>(dims[0]), ny = static_cast<std::uint32_t>(dims[1]);
   return {static_cast<int>(g % nx), static_cast<int>((g / nx) % ny), static_cast<int>(g / (nx * ny))};
+}
+
+std::string grid_unit_name(std::string s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  std::size_t b = 0;
+  while (b < s.size() && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  s.erase(0, b);
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
 }
 
 double grid_length_unit_m(const std::string& unit, const std::string& where) {
@@ -81,13 +81,13 @@ CornerPointGrid corner_point_grid(const GrdeclFile& f, const Point3& offset) {
   std::vector<double> act(total, 1.0);
   if (f.find("ACTNUM")) act = required(f, "ACTNUM", total, "one 0 or 1 per cell").values;
 
-  if (const GrdeclKeyword* gu = f.find("GRIDUNIT"); gu && !gu->words.empty()) g.length_unit = upper_trimmed(gu->words[0]);
+  if (const GrdeclKeyword* gu = f.find("GRIDUNIT"); gu && !gu->words.empty()) g.length_unit = grid_unit_name(gu->words[0]);
   const double L = grid_length_unit_m(g.length_unit, f.find("GRIDUNIT") ? f.find("GRIDUNIT")->where : f.path);
   MapAxes axes;
   if (const GrdeclKeyword* ma = f.find("MAPAXES")) {
     if (ma->values.size() != 6) throw InputError(ma->where, fmt::format("MAPAXES has {} values (expected 6)", ma->values.size()));
     double M = L;
-    if (const GrdeclKeyword* mu = f.find("MAPUNITS"); mu && !mu->words.empty()) M = grid_length_unit_m(upper_trimmed(mu->words[0]), mu->where);
+    if (const GrdeclKeyword* mu = f.find("MAPUNITS"); mu && !mu->words.empty()) M = grid_length_unit_m(grid_unit_name(mu->words[0]), mu->where);
     std::array<double, 6> p;
     for (int q = 0; q < 6; ++q) p[q] = ma->values[static_cast<std::size_t>(q)] * M;
     axes = map_axes(p, ma->where);

@@ -2,6 +2,7 @@
 // (analysis/runner/case_params.hpp): the parameter path of the constant names the field's `scale`.
 #include <gtest/gtest.h>
 
+#include "input_error.hpp"
 #include "case_toml.hpp"
 #include <functional>
 
@@ -11,19 +12,6 @@
 #include "ugs/runner/case_params.hpp"
 
 using namespace ugs;
-
-namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST(FieldParameters, TheConstantsPathSetsItsScale) {
   test::TempDir d("field-params");
@@ -46,18 +34,18 @@ TEST(FieldParameters, TheConstantsPathSetsItsScale) {
   const std::string text = tmpl.render({{"material.pool_c.c_R", 2.5}});
   EXPECT_NE(text.find("c_R = { elevation_table = [[-2000, 2.0], [-1000, 4.0]], scale = 2.5 }"), std::string::npos) << text;
   // Both spellings name one value; a field without `scale` says how to give one.
-  const std::string twice = error_of([&] {
+  const std::string twice = test::input_error_of([&] {
     runner::check_parameters(tmpl, {runner::parse_parameter("material.pool_c.c_R,material.pool_c.c_R.scale=1:3")});
   });
   EXPECT_NE(twice.find("name the same value of the case"), std::string::npos) << twice;
-  EXPECT_NE(error_of([&] { tmpl.value("material.rock.porosity"); }).find("it is a field; write scale = 1.0 in its { ... }"),
+  EXPECT_NE(test::input_error_of([&] { tmpl.value("material.rock.porosity"); }).find("it is a field; write scale = 1.0 in its { ... }"),
             std::string::npos);
   // The bounds are checked like a number's: a scale the field's table cannot take (c_R > 0 holds
   // for any positive scale; a porosity scale of 6 makes 1.2).
   testcase::CaseToml p;
   p.material({.name = "rock", .more = "porosity = { elevation_table = [[-1, 0.2], [0, 0.2]], scale = 1 }\n"});
   testcase::write_text(d / "p.toml", p.str());
-  const std::string range = error_of([&] {
+  const std::string range = test::input_error_of([&] {
     runner::check_parameters(runner::CaseTemplate(d / "p.toml"), {runner::parse_parameter("material.rock.porosity=0.5:6")});
   });
   EXPECT_NE(range.find("the case is not valid at material.rock.porosity = 6"), std::string::npos) << range;

@@ -5,6 +5,7 @@
 
 #include <functional>
 
+#include "input_error.hpp"
 #include "run_tool.hpp"
 #include "ugs/formats/corner_point_grid.hpp"
 #include "ugs/formats/error.hpp"
@@ -31,14 +32,6 @@ PORO
  0.1 2*0.25/
 )";
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 
@@ -110,17 +103,17 @@ ACTNUM
 
 TEST(Grdecl, BadFilesAreOneLineErrors) {
   test::TempDir d("grdecl-bad");
-  EXPECT_NE(error_of([&] { read_grdecl(d / "none.grdecl"); }).find("no such file"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { read_grdecl(d / "none.grdecl"); }).find("no such file"), std::string::npos);
   test::spit(d / "open.grdecl", "PORO\n 0.1 0.2\n");
-  EXPECT_EQ(error_of([&] { read_grdecl(d / "open.grdecl"); }), d / "open.grdecl" + ":1: PORO has no closing '/' before the end of the file");
+  EXPECT_EQ(test::input_error_of([&] { read_grdecl(d / "open.grdecl"); }), d / "open.grdecl" + ":1: PORO has no closing '/' before the end of the file");
   test::spit(d / "rep.grdecl", "PORO\n x*0.1 /\n");
-  EXPECT_NE(error_of([&] { read_grdecl(d / "rep.grdecl"); }).find(":2: 'x*0.1' in PORO: the repeat count"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { read_grdecl(d / "rep.grdecl"); }).find(":2: 'x*0.1' in PORO: the repeat count"), std::string::npos);
   test::spit(d / "eq.grdecl", "EQUALS\n 'PORO' 0.2 /\n/\n");
-  EXPECT_NE(error_of([&] { read_grdecl(d / "eq.grdecl"); }).find(":1: EQUALS computes arrays"), std::string::npos);
+  EXPECT_NE(test::input_error_of([&] { read_grdecl(d / "eq.grdecl"); }).find(":1: EQUALS computes arrays"), std::string::npos);
   test::spit(d / "short.grdecl", std::string(kGrid).replace(std::string(kGrid).find("1005 1005 1005 1006  1005"), 4, ""));
-  EXPECT_NE(error_of([&] { corner_point_grid(read_grdecl(d / "short.grdecl")); }).find("ZCORN has 15 values, expected 16"),
+  EXPECT_NE(test::input_error_of([&] { corner_point_grid(read_grdecl(d / "short.grdecl")); }).find("ZCORN has 15 values, expected 16"),
             std::string::npos);
   test::spit(d / "nogrid.grdecl", "PORO\n 1 /\n");
-  EXPECT_NE(error_of([&] { corner_point_grid(read_grdecl(d / "nogrid.grdecl")); }).find("no SPECGRID or DIMENS keyword"),
+  EXPECT_NE(test::input_error_of([&] { corner_point_grid(read_grdecl(d / "nogrid.grdecl")); }).find("no SPECGRID or DIMENS keyword"),
             std::string::npos);
 }

@@ -20,15 +20,6 @@ namespace ugs::eclipse {
 namespace fs = std::filesystem;
 namespace {
 
-std::string trim_upper(std::string s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
-  std::size_t b = 0;
-  while (b < s.size() && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  s.erase(0, b);
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
-
 double length_unit_m(const std::string& unit, const std::string& where) { return grid_length_unit_m(unit, where); }
 
 // Runs an EclIO call; whatever it throws (missing file, "tail not matching header" of a truncated
@@ -159,7 +150,7 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
     grid.length_unit = "METRES";
     if (eg.hasKey("GRIDUNIT")) {
       const auto& gu = eg.get<std::string>("GRIDUNIT");
-      if (!gu.empty()) grid.length_unit = trim_upper(gu[0]);
+      if (!gu.empty()) grid.length_unit = grid_unit_name(gu[0]);
     }
     const double L = length_unit_m(grid.length_unit, path + ": GRIDUNIT");
     // MAPAXES: Y-axis point, origin, X-axis point, in MAPUNITS (else the grid's unit); float32 in
@@ -173,7 +164,7 @@ Grid read_egrid(const std::string& path, const Point3& offset) {
       std::string mu;
       if (eg.hasKey("MAPUNITS")) {
         const auto& v = eg.get<std::string>("MAPUNITS");
-        if (!v.empty()) mu = trim_upper(v[0]);
+        if (!v.empty()) mu = grid_unit_name(v[0]);
       }
       const double M = mu.empty() ? L : length_unit_m(mu, path + ": MAPUNITS");
       std::array<double, 6> p;

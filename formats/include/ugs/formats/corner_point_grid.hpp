@@ -29,6 +29,9 @@ struct CornerPointGrid {
   std::array<int, 3> ijk(std::uint32_t global_index) const;  // 0-based
 };
 
+// A GRIDUNIT / MAPUNITS item as written ('feet ', 'METRES') in the form grid_length_unit_m reads:
+// upper case, without surrounding blanks.
+std::string grid_unit_name(std::string item);
 // Metres per unit of a GRIDUNIT / MAPUNITS name (METRES, FEET, CM); InputError at `where` else.
 double grid_length_unit_m(const std::string& unit, const std::string& where);
 
