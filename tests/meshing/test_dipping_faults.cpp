@@ -10,6 +10,7 @@
 #include <numbers>
 #include <set>
 
+#include "polygon_clip.hpp"
 #include "meshing_checks.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/box_mesh.hpp"
@@ -57,31 +58,6 @@ Point3 cross(const Point3& a, const Point3& b) {
 }
 double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// Sutherland-Hodgman: the part of a planar polygon where m . x <= d.
-std::vector<Point3> clip(const std::vector<Point3>& poly, const Point3& m, double d) {
-  std::vector<Point3> out;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Point3& a = poly[i];
-    const Point3& b = poly[(i + 1) % poly.size()];
-    const double fa = dot(m, a) - d, fb = dot(m, b) - d;
-    if (fa <= 0) out.push_back(a);
-    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
-      const double s = fa / (fa - fb);
-      out.push_back({a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])});
-    }
-  }
-  return out;
-}
-
-double area3(const std::vector<Point3>& p) {
-  Point3 s{0, 0, 0};
-  for (std::size_t i = 1; i + 1 < p.size(); ++i) {
-    const Point3 c = cross(sub(p[i], p[0]), sub(p[i + 1], p[0]));
-    for (int k = 0; k < 3; ++k) s[k] += c[k];
-  }
-  return 0.5 * std::sqrt(dot(s, s));
-}
-
 // The fault's area inside the box, independently of fault_cut: each (segment, piece) panel as the
 // quadrilateral swept by the segment between the piece's depths, clipped by the box and by
 // `extra` half-spaces.
@@ -98,14 +74,14 @@ double area_inside(const FaultTrace& tr, const std::vector<std::pair<Point3, dou
                               {b[0] + o0 * dx, b[1] + o0 * dy, above},
                               {b[0] + o1 * dx, b[1] + o1 * dy, pc.bottom},
                               {a[0] + o1 * dx, a[1] + o1 * dy, pc.bottom}};
-        q = clip(q, {1, 0, 0}, X1);
-        q = clip(q, {-1, 0, 0}, 0);
-        q = clip(q, {0, 1, 0}, Y1);
-        q = clip(q, {0, -1, 0}, 0);
-        q = clip(q, {0, 0, 1}, 0);
-        q = clip(q, {0, 0, -1}, -Z0);
-        for (const auto& [m, d] : extra) q = clip(q, m, d);
-        if (q.size() >= 3) total += area3(q);
+        q = clip_polygon(q, {1, 0, 0}, X1);
+        q = clip_polygon(q, {-1, 0, 0}, 0);
+        q = clip_polygon(q, {0, 1, 0}, Y1);
+        q = clip_polygon(q, {0, -1, 0}, 0);
+        q = clip_polygon(q, {0, 0, 1}, 0);
+        q = clip_polygon(q, {0, 0, -1}, -Z0);
+        for (const auto& [m, d] : extra) q = clip_polygon(q, m, d);
+        if (q.size() >= 3) total += polygon_area(q);
       }
     above = pc.bottom;
   }

@@ -22,6 +22,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "polygon_clip.hpp"
 #include "meshing_checks.hpp"
 #include "ugs/formats/error.hpp"
 #include "ugs/meshing/box_mesh.hpp"
@@ -103,43 +104,18 @@ FaultTrace surface_fault(const std::string& name, TriangulatedSurface s) {
   return t;
 }
 
-// Sutherland-Hodgman: the part of a planar polygon where m . x <= d.
-std::vector<Point3> clip(const std::vector<Point3>& poly, const Point3& m, double d) {
-  std::vector<Point3> out;
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const Point3& a = poly[i];
-    const Point3& b = poly[(i + 1) % poly.size()];
-    const double fa = dot(m, a) - d, fb = dot(m, b) - d;
-    if (fa <= 0) out.push_back(a);
-    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
-      const double s = fa / (fa - fb);
-      out.push_back({a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])});
-    }
-  }
-  return out;
-}
-
-double area3(const std::vector<Point3>& p) {
-  Point3 s{0, 0, 0};
-  for (std::size_t i = 1; i + 1 < p.size(); ++i) {
-    const Point3 c = cross(sub(p[i], p[0]), sub(p[i + 1], p[0]));
-    for (int k = 0; k < 3; ++k) s[k] += c[k];
-  }
-  return 0.5 * norm(s);
-}
-
 // The surface's area inside the box: each triangle clipped by the box's six planes.
 double area_inside(const TriangulatedSurface& s) {
   double total = 0;
   for (const auto& t : s.triangles) {
     std::vector<Point3> q{s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]};
-    q = clip(q, {1, 0, 0}, X1);
-    q = clip(q, {-1, 0, 0}, 0);
-    q = clip(q, {0, 1, 0}, Y1);
-    q = clip(q, {0, -1, 0}, 0);
-    q = clip(q, {0, 0, 1}, 0);
-    q = clip(q, {0, 0, -1}, -Z0);
-    if (q.size() >= 3) total += area3(q);
+    q = clip_polygon(q, {1, 0, 0}, X1);
+    q = clip_polygon(q, {-1, 0, 0}, 0);
+    q = clip_polygon(q, {0, 1, 0}, Y1);
+    q = clip_polygon(q, {0, -1, 0}, 0);
+    q = clip_polygon(q, {0, 0, 1}, 0);
+    q = clip_polygon(q, {0, 0, -1}, -Z0);
+    if (q.size() >= 3) total += polygon_area(q);
   }
   return total;
 }

@@ -1,0 +1,41 @@
+// Planar polygons in 3D for tests that measure a fault's area inside a box independently of the
+// fault cut (test_dipping_faults, test_surface_faults).
+#pragma once
+#include <cmath>
+#include <vector>
+
+#include "ugs/formats/mesh.hpp"
+
+namespace ugs::test {
+
+// Sutherland-Hodgman: the part of a planar polygon where m . x <= d.
+inline std::vector<Point3> clip_polygon(const std::vector<Point3>& poly, const Point3& m, double d) {
+  const auto side = [&](const Point3& p) { return m[0] * p[0] + m[1] * p[1] + m[2] * p[2] - d; };
+  std::vector<Point3> out;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Point3& a = poly[i];
+    const Point3& b = poly[(i + 1) % poly.size()];
+    const double fa = side(a), fb = side(b);
+    if (fa <= 0) out.push_back(a);
+    if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0)) {
+      const double s = fa / (fa - fb);
+      out.push_back({a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])});
+    }
+  }
+  return out;
+}
+
+// Area of a planar polygon (fan of triangles from its first vertex).
+inline double polygon_area(const std::vector<Point3>& p) {
+  double s[3] = {0, 0, 0};
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+    const double u[3] = {p[i][0] - p[0][0], p[i][1] - p[0][1], p[i][2] - p[0][2]};
+    const double v[3] = {p[i + 1][0] - p[0][0], p[i + 1][1] - p[0][1], p[i + 1][2] - p[0][2]};
+    s[0] += u[1] * v[2] - u[2] * v[1];
+    s[1] += u[2] * v[0] - u[0] * v[2];
+    s[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  return 0.5 * std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+}
+
+}  // namespace ugs::test
