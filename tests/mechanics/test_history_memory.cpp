@@ -1,5 +1,5 @@
 // Memory of a long hypo-plastic history (issue 23): what the solver allocates must stop growing once
-// the Galerkin predictor's basis is full (24 step increments), and no step may hold a second copy
+// the Galerkin predictor's basis is full (48 step increments), and no step may hold a second copy
 // of that basis (the re-orthonormalization at a preconditioner setup works in place). PETSc's own
 // allocation tracking (-log_view_memory turns it on) counts the vectors; glibc's mallinfo2 the rest.
 #include <malloc.h>
@@ -21,7 +21,7 @@ using namespace ugs;
 
 namespace {
 
-constexpr int kBasis = 24;  // the predictor's directions (solver_impl.hpp, Predictor::kRecycle)
+constexpr int kBasis = 48;  // the predictor's directions (solver_impl.hpp, Predictor::kRecycle)
 
 // A hypo-plastic block 2 km deep, its bottom fixed and sides on rollers.
 mech::Model block_model(double L, int n) {

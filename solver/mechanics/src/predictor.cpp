@@ -64,7 +64,7 @@ void Predictor::refresh(Mat A) {
   const int m = static_cast<int>(basis_.size());
   if (m == 0) return;
   PetscLogEventBegin(events().predictor, 0, 0, 0, 0);
-  // G = W^T A W, one column per product A w_j (in aw_: A W is not kept, 24 vectors less).
+  // G = W^T A W, one column per product A w_j (in aw_: A W is not kept, kRecycle vectors less).
   Eigen::MatrixXd G(m, m);
   std::vector<PetscScalar> dots(m);
   for (int j = 0; j < m; ++j) {
@@ -105,7 +105,7 @@ void Predictor::combine_in_place(const std::vector<std::vector<PetscScalar>>& co
   // directions' block (sequential views on it), computed in full before it overwrites them. The
   // kernels work entry by entry (loops, or a BLAS axpy whose vector loop takes groups of entries
   // counted from the start: kBlock is a multiple of them), so every entry gets the bits of
-  // VecMAXPY on the whole vectors, without a second basis in memory (24 vectors of the size of u).
+  // VecMAXPY on the whole vectors, without a second basis in memory (kRecycle vectors of the size of u).
   static constexpr PetscInt kBlock = 4096;
   std::vector<PetscScalar> fresh(static_cast<std::size_t>(kept) * kBlock);
   // Blocks [lo, lo + len) for lo in [from, to), all of length len.
@@ -138,7 +138,7 @@ void Predictor::combine_in_place(const std::vector<std::vector<PetscScalar>>& co
 
 void Predictor::remember(Mat A, Vec v) {
   // A v in aw_, recomputed after each Gram-Schmidt pass (two products more per step instead of
-  // keeping A W: 24 vectors of the size of u).
+  // keeping A W: kRecycle vectors of the size of u).
   UGS_PETSC(MatMult(A, v, aw_));
   PetscScalar n0 = 0;
   UGS_PETSC(VecDot(v, aw_, &n0));

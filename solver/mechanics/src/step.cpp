@@ -20,8 +20,8 @@ void MechanicsSolver::Impl::commit(const std::vector<double>& dp_target) {
 void MechanicsSolver::Impl::remember_increment_from(Vec base) {
   if (!assembler.mat_created) return;  // (no matrix yet: the step had no load)
   // With a coupling the saddle point predicts its own first iterate (the contact library's
-  // SaddleGuess) and this basis is never used: three products with K and 24 vectors of the size
-  // of u (0.29 GB over both processes at the thesis scale) spared.
+  // SaddleGuess) and this basis is never used: three products with K and 48 vectors of the size
+  // of u (0.63 GB over both processes at the thesis scale) spared.
   if (coupling) return;
   Vec v;
   UGS_PETSC(VecDuplicate(u, &v));
