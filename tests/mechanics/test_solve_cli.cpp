@@ -267,6 +267,27 @@ TEST(SolveTool, TurningPointStepsMatchEveryDate) {
     EXPECT_LT(test::max_rel_diff(all.node_field(k, "u_mm").values, turning.node_field(s, "u_mm").values), 1e-5)
         << turning.steps()[s].date;
   }
+  // Turning windows (--steps overrides the case): no more dates than the turning points, the plan
+  // and the note of the dates skipped name the mode, and the output dates keep the every-date
+  // answer (each low secured within the 0.01 MPa tolerance).
+  r = test::run(test::solve_cmd() + " " + args + " --case " + d / "turning.toml" + " --steps turning-windows -o " +
+                d / "windows.h5" + " -v");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("dates (the fewest dates within the tolerance of every turn of the pressure"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("turning.toml: steps = \"turning-windows\": "), std::string::npos) << r.err;
+  FieldSeriesReader windows(d / "windows_top.h5"), windows_results(d / "windows.h5");
+  EXPECT_LE(windows.steps().size(), turning.steps().size());
+  ASSERT_EQ(windows_results.steps().size(), 2u);
+  std::size_t compared = 0;
+  for (std::size_t s = 0; s < windows.steps().size(); ++s)
+    for (std::size_t k = 0; k < all.steps().size(); ++k)
+      if (all.steps()[k].date == windows.steps()[s].date && (all.steps()[k].date == "1960-03-01" || all.steps()[k].date == "1960-09-01")) {
+        ++compared;
+        EXPECT_LT(test::max_rel_diff(all.node_field(k, "u_mm").values, windows.node_field(s, "u_mm").values), 1e-4)
+            << windows.steps()[s].date;
+      }
+  EXPECT_EQ(compared, 2u);
 }
 
 TEST(SolveTool, PetscOptionsPassThrough) {

@@ -232,15 +232,17 @@ private:
       if (rule.turning_points) {
         log(1, fmt::format("turning-point steps: {} of {} dates ({}, output dates, {}the last date)", steps_.size(),
                            steps_.dates_in_run,
-                           faulted() ? "every low and high of the pressure: the faults answer both" : "turning points of the pressure",
+                           rule.fewest ? "the fewest dates within the tolerance of every turn of the pressure"
+                           : faulted() ? "every low and high of the pressure: the faults answer both"
+                                       : "turning points of the pressure",
                            rule.every_date_in.empty() ? "" : "every date in the --every-date-in windows, "));
         // Every output date is a step; the other dates skipped are missing from the per-step outputs
         // (an InSAR comparison would interpolate across them): say so once.
         if (steps_.size() < steps_.dates_in_run)
-          log_later(-1, fmt::format("{}: steps = \"turning-points\": {} of the {} pressure dates are not stepped on and are "
+          log_later(-1, fmt::format("{}: steps = \"{}\": {} of the {} pressure dates are not stepped on and are "
                                     "missing from the top-surface series{}; list the dates you need in [output] dates, or "
                                     "set [solver] steps = \"every-date\"",
-                                    R.cs.path, steps_.dates_in_run - steps_.size(), steps_.dates_in_run,
+                                    R.cs.path, steps, steps_.dates_in_run - steps_.size(), steps_.dates_in_run,
                                     R.cs.output_dates.empty() ? " and the results" : ""));
       }
     });
