@@ -101,4 +101,24 @@ TEST(Sections, LayerTopAndConfinementHeight) {
   EXPECT_NEAR(h.height, 15.0, 1e-9);  // Kuhn tetrahedra of a 20 m layer: centroids 5, 10, 15 m up
   EXPECT_EQ(h.cells_over, 10u * 8u * 6u);
   EXPECT_EQ(h.cells_above, 10u * 8u * 6u * 2u);
+  // The next layer up under a pressure change of its own (another pool): left out, and nothing
+  // above it reaches 1 % of the peak.
+  std::vector<char> own(b.tets.size(), 0);
+  for (std::size_t e = 0; e < b.tets.size(); ++e) {
+    double z = 0;
+    for (auto n : b.tets[e]) z += b.mesh.nodes[n][2] / 4;
+    own[e] = !b.layer[e] && z > -40 && z < -20;
+  }
+  const auto rock = confinement_height(b.mesh.nodes, b.tets, v, b.layer, loc, 0.01, own);
+  EXPECT_EQ(rock.peak, 1.0);
+  EXPECT_EQ(rock.height, 0.0);
+  EXPECT_EQ(rock.cells_over, 0u);
+  EXPECT_EQ(rock.cells_above, 10u * 8u * 6u);
+  // With the values above it raised to 0.02, they set the height: centroids up to 35 m.
+  for (std::size_t e = 0; e < b.tets.size(); ++e)
+    if (!b.layer[e] && !own[e]) v[e] = 0.02;
+  const auto far = confinement_height(b.mesh.nodes, b.tets, v, b.layer, loc, 0.01, own);
+  EXPECT_NEAR(far.height, 35.0, 1e-9);
+  EXPECT_EQ(far.cells_over, 10u * 8u * 6u);
+  EXPECT_THROW(confinement_height(b.mesh.nodes, b.tets, v, b.layer, loc, 0.01, std::vector<char>(3, 0)), std::logic_error);
 }

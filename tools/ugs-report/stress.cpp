@@ -81,17 +81,27 @@ void build_stress(Context& c) {
   if (p0 <= 0) c.notes.push_back("no reference pressure (case pool or --reference-pressure-MPa): stress changes shown in MPa");
 
   // The pool's layer (the pool's materials and its aquifers), by the cells' physical names.
-  std::vector<char> in_layer;
+  // The other pools' materials and aquifers have a pressure change of their own: the confinement
+  // height leaves them out (insar::confinement_height).
+  std::vector<char> in_layer, own_load;
   std::string layer_name;
   if (pool && c.mesh) {
-    std::set<std::string> mats(pool->materials.begin(), pool->materials.end());
+    std::set<std::string> mats(pool->materials.begin(), pool->materials.end()), others;
     mats.insert(pool->aquifer_materials.begin(), pool->aquifer_materials.end());
+    for (const auto& q : c.cs->pools) {
+      others.insert(q.materials.begin(), q.materials.end());
+      others.insert(q.aquifer_materials.begin(), q.aquifer_materials.end());
+    }
     const auto m = r.materials();
     in_layer.assign(tets.size(), 0);
+    own_load.assign(tets.size(), 0);
     std::size_t n = 0;
     for (std::size_t e = 0; e < tets.size(); ++e) {
       const PhysicalGroup* g = row0 + e < m.size() ? c.mesh->find_physical_tag(3, m[row0 + e]) : nullptr;
-      if (g && g->name.rfind("mat:", 0) == 0 && mats.count(g->name.substr(4))) in_layer[e] = 1, ++n;
+      if (!g || g->name.rfind("mat:", 0) != 0) continue;
+      const std::string name = g->name.substr(4);
+      if (mats.count(name)) in_layer[e] = 1, ++n;
+      else if (others.count(name)) own_load[e] = 1;
     }
     if (n == 0) {
       c.notes.push_back(fmt::format("no cell of {}'s materials in the results: pool-top pictures skipped", pool->name));
@@ -240,9 +250,10 @@ void build_stress(Context& c) {
     if (ltop) {
       std::vector<double> vz(tets.size());
       for (std::size_t e = 0; e < tets.size(); ++e) vz[e] = change(e, 2);
-      const auto h = insar::confinement_height(x, tets, vz, in_layer, *top_locator, 0.01);
+      const auto h = insar::confinement_height(x, tets, vz, in_layer, *top_locator, 0.01, own_load);
       c.headlines.push_back({ph.label(),
-                             fmt::format("height above the top of {} where |Δσ_z| falls below 1 % of its peak", layer_name),
+                             fmt::format("height above the top of {} where |Δσ_z| falls below 1 % of its peak (outside every pool and "
+                                         "aquifer)", layer_name),
                              fmt::format("{:.1f} m (peak |Δσ_z| = {:.3g} MPa = {:.3f} p0; {} of {} cells above beyond 1 %)",
                                          h.height, h.peak * norm / 1e6, p0 > 0 ? h.peak : NAN, h.cells_over, h.cells_above),
                              "about 20 m above Pool C"});

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "ugs/formats/error.hpp"
@@ -153,7 +154,10 @@ LayerTop layer_top(std::span<const Point3> x, std::span<const std::uint64_t> tag
 }
 
 ConfinementHeight confinement_height(std::span<const Point3> x, std::span<const Tet> tets, const std::vector<double>& v,
-                                     const std::vector<char>& in_layer, const SurfaceLocator& top, double fraction) {
+                                     const std::vector<char>& in_layer, const SurfaceLocator& top, double fraction,
+                                     const std::vector<char>& own_load) {
+  if (!own_load.empty() && own_load.size() != tets.size())
+    throw std::logic_error("confinement_height: own_load needs one flag per cell");
   ConfinementHeight r;
   for (std::size_t e = 0; e < tets.size(); ++e)
     if (in_layer[e] && std::isfinite(v[e])) r.peak = std::max(r.peak, std::abs(v[e]));
@@ -162,7 +166,7 @@ ConfinementHeight confinement_height(std::span<const Point3> x, std::span<const 
   // Footprint test on the plan bounding box first: most cells are far from the layer.
   const auto ext = top.surface().extent();
   for (std::size_t e = 0; e < tets.size(); ++e) {
-    if (in_layer[e]) continue;
+    if (in_layer[e] || (!own_load.empty() && own_load[e])) continue;
     Point3 c{0, 0, 0};
     for (auto n : tets[e])
       for (int j = 0; j < 3; ++j) c[j] += 0.25 * x[n][j];

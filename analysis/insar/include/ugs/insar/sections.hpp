@@ -49,8 +49,13 @@ struct ConfinementHeight {
 
 // Over the cells outside the layer whose centroid lies above the layer top (inside its footprint):
 // the largest height above the top of a cell whose |value| reaches fraction x the layer's peak.
+// Cells flagged in `own_load` (empty: none) are left out: they respond to a pressure change of their
+// own (another pool, its aquifers), not to the one propagating from the layer. (Until 2026-11-29
+// they counted: at the po-plain thesis scale Pool A's own re-pressurization, 2.5 % of Pool C's peak,
+// made a 168 m height where no rock cell above Pool C reaches 1 %.)
 ConfinementHeight confinement_height(std::span<const Point3> x, std::span<const Tet> tets,
                                      const std::vector<double>& cell_values, const std::vector<char>& in_layer,
-                                     const SurfaceLocator& layer_top, double fraction);
+                                     const SurfaceLocator& layer_top, double fraction,
+                                     const std::vector<char>& own_load = {});
 
 }  // namespace ugs::insar
