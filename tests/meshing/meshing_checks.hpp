@@ -67,6 +67,19 @@ inline FaceKey face(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   return {n};
 }
 
+// The triangle block of the 2D physical group `name` (nullptr: none).
+inline const ElementBlock* triangle_group(const Mesh& m, const std::string& name) {
+  const auto* p = m.find_physical(2, name);
+  if (!p) return nullptr;
+  for (const auto& b : m.blocks)
+    if (b.entity_dim == 2 && b.type == ElementType::Triangle)
+      for (const auto& e : m.entities)
+        if (e.dim == 2 && e.tag == b.entity_tag)
+          for (int ph : e.physicals)
+            if (ph == p->tag) return &b;
+  return nullptr;
+}
+
 struct Conformity {
   std::size_t tets = 0, interior_faces = 0, outer_faces = 0;
   std::size_t over_shared = 0;          // faces in more than two tetrahedra

@@ -74,30 +74,13 @@ double area_inside(const FaultTrace& tr, const std::vector<std::pair<Point3, dou
                               {b[0] + o0 * dx, b[1] + o0 * dy, above},
                               {b[0] + o1 * dx, b[1] + o1 * dy, pc.bottom},
                               {a[0] + o1 * dx, a[1] + o1 * dy, pc.bottom}};
-        q = clip_polygon(q, {1, 0, 0}, X1);
-        q = clip_polygon(q, {-1, 0, 0}, 0);
-        q = clip_polygon(q, {0, 1, 0}, Y1);
-        q = clip_polygon(q, {0, -1, 0}, 0);
-        q = clip_polygon(q, {0, 0, 1}, 0);
-        q = clip_polygon(q, {0, 0, -1}, -Z0);
+        q = clip_to_box(q, X1, Y1, Z0);
         for (const auto& [m, d] : extra) q = clip_polygon(q, m, d);
         if (q.size() >= 3) total += polygon_area(q);
       }
     above = pc.bottom;
   }
   return total;
-}
-
-const ElementBlock* group(const Mesh& m, const std::string& name) {
-  const auto* p = m.find_physical(2, name);
-  if (!p) return nullptr;
-  for (const auto& b : m.blocks)
-    if (b.entity_dim == 2 && b.type == ElementType::Triangle)
-      for (const auto& e : m.entities)
-        if (e.dim == 2 && e.tag == b.entity_tag)
-          for (int ph : e.physicals)
-            if (ph == p->tag) return &b;
-  return nullptr;
 }
 
 struct FaceCheck {
@@ -128,7 +111,7 @@ FaceCheck check_faces(const Mesh& m, const FaultTrace& tr) {
     above = pc.bottom;
   }
   FaceCheck c;
-  const ElementBlock* b = group(m, "fault:" + tr.name);
+  const ElementBlock* b = triangle_group(m, "fault:" + tr.name);
   if (!b) return c;
   for (std::size_t i = 0; i < b->size(); ++i) {
     const auto e = b->element(i);
@@ -232,7 +215,7 @@ TEST(DippingFaults, ListricFault) {
   EXPECT_GE(sum.band_min_dihedral_deg, kBoundDeg);
   expect_on_surface(m, tr, area_inside(tr));
   // The kinks are horizontal lines at the piece boundaries: faces are found on all three planes.
-  const ElementBlock* b = group(m, "fault:listric");
+  const ElementBlock* b = triangle_group(m, "fault:listric");
   ASSERT_NE(b, nullptr);
   int in_piece[3] = {0, 0, 0};
   for (std::size_t i = 0; i < b->size(); ++i) {
@@ -256,8 +239,8 @@ TEST(DippingFaults, TwoCrossingFaults) {
   EXPECT_GE(sum.band_min_dihedral_deg, kBoundDeg);
   // The intersection line is made of mesh edges: both faults share nodes along it, all at x = 2000.
   std::set<std::uint32_t> na, nb;
-  for (auto v : group(m, "fault:east_dipping")->nodes) na.insert(v);
-  for (auto v : group(m, "fault:west_dipping")->nodes) nb.insert(v);
+  for (auto v : triangle_group(m, "fault:east_dipping")->nodes) na.insert(v);
+  for (auto v : triangle_group(m, "fault:west_dipping")->nodes) nb.insert(v);
   std::size_t shared = 0;
   for (auto v : na)
     if (nb.count(v)) {
@@ -296,7 +279,7 @@ TEST(DippingFaults, FaultEndingAgainstAnother) {
   EXPECT_GE(f.area, 0.99 * area);
   EXPECT_LE(f.area, area * (1 + 1e-9));
   // Every splay face lies on the hanging-wall side of the main fault.
-  const ElementBlock* g = group(m, "fault:splay");
+  const ElementBlock* g = triangle_group(m, "fault:splay");
   for (auto v : g->nodes) EXPECT_GE(m.nodes[v][0] - 1200 - (-100 - m.nodes[v][2]), -1e-6 * kSize);
   FaultInsertOptions io;
   const auto rep = insert_faults(m, io);

@@ -109,27 +109,10 @@ double area_inside(const TriangulatedSurface& s) {
   double total = 0;
   for (const auto& t : s.triangles) {
     std::vector<Point3> q{s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]};
-    q = clip_polygon(q, {1, 0, 0}, X1);
-    q = clip_polygon(q, {-1, 0, 0}, 0);
-    q = clip_polygon(q, {0, 1, 0}, Y1);
-    q = clip_polygon(q, {0, -1, 0}, 0);
-    q = clip_polygon(q, {0, 0, 1}, 0);
-    q = clip_polygon(q, {0, 0, -1}, -Z0);
+    q = clip_to_box(q, X1, Y1, Z0);
     if (q.size() >= 3) total += polygon_area(q);
   }
   return total;
-}
-
-const ElementBlock* group(const Mesh& m, const std::string& name) {
-  const auto* p = m.find_physical(2, name);
-  if (!p) return nullptr;
-  for (const auto& b : m.blocks)
-    if (b.entity_dim == 2 && b.type == ElementType::Triangle)
-      for (const auto& e : m.entities)
-        if (e.dim == 2 && e.tag == b.entity_tag)
-          for (int ph : e.physicals)
-            if (ph == p->tag) return &b;
-  return nullptr;
 }
 
 // Is x in triangle t of s (its plane within `tol`, and inside its edges by `tol`)?
@@ -156,7 +139,7 @@ struct FaceCheck {
 // triangle's normal (either sign: the orientation is checked separately).
 FaceCheck check_faces(const Mesh& m, const std::string& name, const TriangulatedSurface& s) {
   FaceCheck c;
-  const ElementBlock* b = group(m, "fault:" + name);
+  const ElementBlock* b = triangle_group(m, "fault:" + name);
   if (!b) return c;
   for (std::size_t i = 0; i < b->size(); ++i) {
     const auto e = b->element(i);
@@ -301,7 +284,7 @@ TEST(SurfaceFaults, ListricCylinder) {
   expect_sound(m);
   const FaceCheck c = expect_exact(m, f, sum, 0);
   // Closed form: each face's normal is the cylinder's at its strip's mid-angle.
-  const ElementBlock* b = group(m, "fault:listric");
+  const ElementBlock* b = triangle_group(m, "fault:listric");
   ASSERT_NE(b, nullptr);
   double worst = 0;
   for (std::size_t i = 0; i < b->size(); ++i) {
@@ -344,7 +327,7 @@ TEST(SurfaceFaults, Cone) {
   const auto sum = cut_faults(m, {f});
   expect_sound(m);
   const FaceCheck c = expect_exact(m, f, sum, 0);
-  const ElementBlock* b = group(m, "fault:cone");
+  const ElementBlock* b = triangle_group(m, "fault:cone");
   ASSERT_NE(b, nullptr);
   double worst = 0;
   const double delta = 0.5 * (theta_of(1) - theta_of(0));
@@ -416,11 +399,11 @@ TEST(SurfaceFaults, BranchEndingOnAnotherAndDyingOut) {
   expect_exact(m, branch, sum, 1);
   // The junction: nodes of both faults lie on the junction line, and the edges of branch faces
   // along it run its whole length (2,000 m / sin 60).
-  std::set<std::uint32_t> nm(group(m, "fault:main")->nodes.begin(), group(m, "fault:main")->nodes.end());
+  std::set<std::uint32_t> nm(triangle_group(m, "fault:main")->nodes.begin(), triangle_group(m, "fault:main")->nodes.end());
   double worst = 0, zlo = 0, zhi = -1e300;
   zlo = 1e300;
   std::size_t shared = 0;
-  for (auto v : group(m, "fault:branch")->nodes)
+  for (auto v : triangle_group(m, "fault:branch")->nodes)
     if (nm.count(v)) {
       ++shared;
       const Point3& x = m.nodes[v];
@@ -434,7 +417,7 @@ TEST(SurfaceFaults, BranchEndingOnAnotherAndDyingOut) {
   EXPECT_NEAR(zhi, -400, 1e-6);
   EXPECT_NEAR(zlo, -2400, 1e-6);
   // Every branch node lies on the hanging-wall side of the main fault (x >= main_x(z)).
-  for (auto v : group(m, "fault:branch")->nodes) EXPECT_GE(m.nodes[v][0] - main_x(m.nodes[v][2]), -1e-6);
+  for (auto v : triangle_group(m, "fault:branch")->nodes) EXPECT_GE(m.nodes[v][0] - main_x(m.nodes[v][2]), -1e-6);
   FaultInsertOptions io;
   const auto rep = insert_faults(m, io);
   ASSERT_EQ(rep.faults.size(), 2u);

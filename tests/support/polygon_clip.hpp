@@ -25,6 +25,16 @@ inline std::vector<Point3> clip_polygon(const std::vector<Point3>& poly, const P
   return out;
 }
 
+// The part of a planar polygon inside the box [0, x1] x [0, y1] x [z0, 0] (z0 < 0).
+inline std::vector<Point3> clip_to_box(std::vector<Point3> q, double x1, double y1, double z0) {
+  q = clip_polygon(q, {1, 0, 0}, x1);
+  q = clip_polygon(q, {-1, 0, 0}, 0);
+  q = clip_polygon(q, {0, 1, 0}, y1);
+  q = clip_polygon(q, {0, -1, 0}, 0);
+  q = clip_polygon(q, {0, 0, 1}, 0);
+  return clip_polygon(q, {0, 0, -1}, -z0);
+}
+
 // Area of a planar polygon (fan of triangles from its first vertex).
 inline double polygon_area(const std::vector<Point3>& p) {
   double s[3] = {0, 0, 0};

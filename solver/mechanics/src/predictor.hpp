@@ -42,7 +42,7 @@ class Predictor {
   // 48, not 24 (until 2026-11-29): a year of monthly storage steps and the aquifers' slower shapes
   // do not fit in 24 directions. On the scale-0.1 history box's InSAR-window months the projection
   // then left 1e-2 .. 6e-2 of the residual and the linear solve took 11-15 iterations; with 48 it
-  // leaves ~1e-5 and takes 2-5 (docs/mechanics.md, "Speed of the hypo-plastic history").
+  // leaves ~1e-5 and takes 2-8 (docs/mechanics.md, "Speed of the hypo-plastic history").
   static constexpr int kRecycle = 48;
   // Per remembered increment, the weights of the older directions decay by this factor.
   static constexpr double kDecay = 0.9;
