@@ -154,7 +154,9 @@ void run(const Options& o, const cli::Tool& tool) {
     const auto st = members.run(which, o.jobs, [&](std::size_t k, const MemberStatus& s) {
       ++done;
       if (s.state == MemberState::failed) cli::warning("member {} failed: {}", k + 1, s.error);
-      else cli::info("member {} ({}/{}){}", k + 1, done, which.size(), s.ran_now ? fmt::format(" {:.1f} s", s.seconds) : " (cached)");
+      else if (!s.derived_from.empty()) cli::info("member {} ({}/{}) derived from {}: {}", k + 1, done, which.size(), s.derived_from, s.note);
+      else cli::info("member {} ({}/{}){}{}", k + 1, done, which.size(), s.ran_now ? fmt::format(" {:.1f} s", s.seconds) : " (cached)",
+                     s.note.empty() ? "" : fmt::format(" (run, not derived: {})", s.note));
     });
     if (o.member) {
       if (st.front().state == MemberState::failed) throw ComputeError(st.front().error);

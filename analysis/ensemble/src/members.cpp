@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "ugs/ensemble/friction_variants.hpp"
 #include "ugs/formats/error.hpp"
 
 namespace ugs::ensemble {
@@ -20,7 +21,10 @@ EnsembleMembers::EnsembleMembers(const EnsembleSpec& spec, Design design, const 
                                  const std::string& command, const std::string& mesh, const std::string& cache_dir)
     : spec_(spec), design_(std::move(design)), tmpl_(tmpl) {
   for (const auto& p : spec_.parameters)
-    for (const auto& path : p.paths) any_forecast_only_ = any_forecast_only_ || forecast_only(path);
+    for (const auto& path : p.paths) {
+      any_forecast_only_ = any_forecast_only_ || forecast_only(path);
+      any_friction_ = any_friction_ || friction_only(path);
+    }
   runner::SolverRunSetup s;
   s.case_template = &tmpl;
   s.command = command;
@@ -73,8 +77,98 @@ MemberStatus EnsembleMembers::status(std::size_t k) const {
   return s;
 }
 
+std::string EnsembleMembers::stick_key(std::size_t k) const {
+  std::string key;
+  for (const auto& [path, v] : solver_values(k))
+    if (!friction_only(path)) key += fmt::format("{}={}\n", path, v);
+  return key;
+}
+
+MemberStatus EnsembleMembers::derive_from(std::size_t k, std::size_t source) {
+  MemberStatus s;
+  s.entry = entry(k);
+  const std::string from = entry(source);
+  const CaseFile run_case = runner::read_rendered_case(tmpl_, solver_values(source));
+  const CaseFile member_case = runner::read_rendered_case(tmpl_, solver_values(k));
+  FrictionVariant v;
+  bool stored = false;
+  try {
+    stored = runs_->store_derived(solver_values(k), from, [&](const std::string& folder) {
+      v = derive_friction_variant(runs_->entry_path(from), run_case, member_case, folder);
+      if (v.derived)
+        runner::write_text_file((fs::path(folder) / "derived.txt").string(), fmt::format("derived from {}: {}\n", from, v.reason));
+      return v.derived;
+    });
+  } catch (const InputError& e) {  // the source's outputs do not read: the member runs itself
+    v.reason = fmt::format("cannot read {}: {}", from, e.what());
+  }
+  s.note = v.reason;
+  if (stored) {
+    s.state = MemberState::done;
+    s.derived_from = from;
+  } else {
+    s.error = "not run";
+  }
+  return s;
+}
+
 std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& which, int jobs,
                                                const std::function<void(std::size_t, const MemberStatus&)>& on_done) {
+  if (!any_friction_) return run_entries(which, jobs, on_done);
+  // Friction variants: per group of members that differ only in the faults' friction (and in
+  // forecast-only values), one solver run first — a member of the group already in the cache, else
+  // the group's first — then the others derived from it where every fault sticks, and run where not.
+  std::vector<MemberStatus> out(which.size());
+  std::map<std::string, std::size_t> source;  // stick key -> member whose entry is done
+  for (std::size_t k = 0; k < size(); ++k)
+    if (status(k).state == MemberState::done) source.try_emplace(stick_key(k), k);
+  std::vector<std::size_t> first, rest;  // positions in `which`
+  std::map<std::string, std::size_t> first_of;
+  for (std::size_t j = 0; j < which.size(); ++j) {
+    const std::string g = stick_key(which[j]);
+    if (!source.count(g) && first_of.emplace(g, which[j]).second) first.push_back(j);
+    else rest.push_back(j);
+  }
+  auto subset = [&](const std::vector<std::size_t>& pos) {
+    std::vector<std::size_t> v;
+    for (auto j : pos) v.push_back(which[j]);
+    return v;
+  };
+  const auto r1 = run_entries(subset(first), jobs, on_done);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    out[first[i]] = r1[i];
+    if (r1[i].state == MemberState::done) source.try_emplace(stick_key(which[first[i]]), which[first[i]]);
+  }
+  std::vector<std::size_t> again;  // positions of members that run after all
+  std::vector<std::string> why_run;
+  for (std::size_t j : rest) {
+    const std::size_t k = which[j];
+    MemberStatus s = status(k);
+    const auto src = source.find(stick_key(k));
+    if (s.state != MemberState::done && src != source.end()) s = derive_from(k, src->second);
+    if (s.state == MemberState::done) {
+      out[j] = s;
+      if (on_done) on_done(k, s);
+    } else {
+      again.push_back(j);
+      why_run.push_back(s.note);
+    }
+  }
+  const auto r3 = run_entries(subset(again), jobs, [&](std::size_t k, const MemberStatus& st) {
+    MemberStatus s = st;
+    for (std::size_t i = 0; i < again.size(); ++i)
+      if (which[again[i]] == k) s.note = why_run[i];
+    if (on_done) on_done(k, s);
+  });
+  for (std::size_t i = 0; i < again.size(); ++i) {
+    out[again[i]] = r3[i];
+    out[again[i]].note = why_run[i];
+  }
+  return out;
+}
+
+std::vector<MemberStatus> EnsembleMembers::run_entries(const std::vector<std::size_t>& which, int jobs,
+                                                       const std::function<void(std::size_t, const MemberStatus&)>& on_done) {
   std::vector<MemberStatus> out(which.size());
   // One run per entry: members with the same solver values (forecast-only parameters aside) share
   // it, the first of them runs it and the others take its outcome afterwards.

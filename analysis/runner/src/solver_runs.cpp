@@ -39,6 +39,17 @@ std::string find_in_path(const std::string& name) {
   }
 }
 
+// An entry's record: its key, its values, the command and, for a derived entry, its source.
+std::string entry_json(const std::string& key, const ParameterValues& values, const std::string& command,
+                       const std::string& derived_from) {
+  std::string json = "{\n  \"key\": " + json_string(key) + ",\n  \"parameters\": {";
+  for (std::size_t i = 0; i < values.size(); ++i)
+    json += fmt::format("{}\n    {}: {}", i ? "," : "", json_string(values[i].first), toml_float(values[i].second));
+  json += fmt::format("\n  }},\n  \"command\": {}", json_string(command));
+  if (!derived_from.empty()) json += ",\n  \"derived_from\": " + json_string(derived_from);
+  return json + "\n}\n";
+}
+
 std::string substitute(const std::string& tmpl, const std::map<std::string, std::string>& values) {
   std::string out;
   for (std::size_t i = 0; i < tmpl.size();) {
@@ -275,11 +286,7 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
   }
   // entry.json holds what the entry depends on, nothing that changes from run to run: the wall time
   // goes to timing.txt (and stderr).
-  std::string json = "{\n  \"key\": " + json_string(k) + ",\n  \"parameters\": {";
-  for (std::size_t i = 0; i < values.size(); ++i)
-    json += fmt::format("{}\n    {}: {}", i ? "," : "", json_string(values[i].first), toml_float(values[i].second));
-  json += fmt::format("\n  }},\n  \"command\": {}\n}}\n", json_string(setup_.command));
-  write_text_file((tmp / "entry.json").string(), json);
+  write_text_file((tmp / "entry.json").string(), entry_json(k, values, setup_.command, ""));
   write_text_file((tmp / "timing.txt").string(), fmt::format("solver_seconds {:.3f}\n", r.seconds));
   if (!setup_.keep_results) {
     fs::remove(out);
@@ -295,6 +302,27 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
   }
   // else another process won the race: its entry is as good (the guard removes ours)
   return r.seconds;
+}
+
+bool SolverRuns::store_derived(const ParameterValues& values, const std::string& derived_from,
+                               const std::function<bool(const std::string&)>& fill) {
+  const std::string name = entry_name(values), k = key(values);
+  const fs::path entry = entry_path(name);
+  static std::atomic<unsigned> counter{0};
+  const fs::path tmp = fs::path(setup_.cache_dir) / fmt::format(".tmp-{}-derived-{}-{}", name, ::getpid(), counter++);
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  RemoveAtExit guard(tmp);
+  if (!fill(tmp.string())) return false;
+  write_text_file((tmp / "case.toml").string(), setup_.case_template->render(values));
+  write_text_file((tmp / "inputs.txt").string(), inputs_);
+  write_text_file((tmp / "entry.json").string(), entry_json(k, values, setup_.command, derived_from));
+  write_text_file((tmp / "key.txt").string(), k);  // last: its presence marks a complete entry
+  std::error_code ec;
+  fs::remove_all(entry, ec);
+  fs::rename(tmp, entry, ec);
+  if (!ec) guard.release();
+  return true;
 }
 
 }  // namespace ugs::runner

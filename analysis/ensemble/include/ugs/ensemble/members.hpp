@@ -5,7 +5,9 @@
 // solver's outputs (result.h5, *_faults.csv, *_scenario.csv): metrics are computed when collecting.
 // Parameters the solver never reads (the seismicity forecast's, `seismicity.*`) do not enter the
 // run: members that differ only in them share one entry, and collect applies each member's own
-// values to its forecast (forecast_case).
+// values to its forecast (forecast_case). Members that differ from a run only in the faults'
+// friction angles (fault.<name>.friction_deg) take that run's results when every fault sticks in it
+// (friction_variants.hpp): their entries are derived, not run (entry.json names the source).
 #pragma once
 #include <functional>
 #include <memory>
@@ -30,6 +32,8 @@ struct MemberStatus {
   std::string error;        // failed: the runner's error line; missing: "not run"
   bool ran_now = false;
   double seconds = 0;
+  std::string derived_from;  // set when the entry was derived now from another (friction variants)
+  std::string note;          // what the derivation checked, or why it did not hold (then the member ran)
 };
 
 class EnsembleMembers {
@@ -56,10 +60,19 @@ public:
   const runner::SolverRuns& runs() const { return *runs_; }
 
 private:
+  // run() without friction variants: one solver run per entry, `jobs` at once.
+  std::vector<MemberStatus> run_entries(const std::vector<std::size_t>& which, int jobs,
+                                        const std::function<void(std::size_t, const MemberStatus&)>& on_done);
+  // The values the solution depends on while every fault sticks: the solver's, friction aside.
+  std::string stick_key(std::size_t k) const;
+  // Derives member k's entry from member `source`'s (done); the status says whether it held.
+  MemberStatus derive_from(std::size_t k, std::size_t source);
+
   const EnsembleSpec& spec_;
   Design design_;
   const runner::CaseTemplate& tmpl_;
   bool any_forecast_only_ = false;
+  bool any_friction_ = false;
   std::unique_ptr<runner::SolverRuns> runs_;
 };
 

@@ -60,6 +60,15 @@ public:
   double run(const ParameterValues& values, const std::string& label,
              const std::function<void(const std::string& folder, const std::string& result_h5)>& finish);
 
+  // Stores the entry for `values` without running the solver, from results known to be the same as
+  // a run's (ugs-ensemble's friction variants of a run in which every fault sticks): `fill(folder)`
+  // writes the outputs, the runner adds case.toml, inputs.txt, entry.json (with `derived_from`) and
+  // key.txt, and renames the folder into place as run() does. Returns false, leaving nothing, when
+  // `fill` returns false (the results cannot be derived: the caller runs the solver instead);
+  // exceptions from `fill` propagate, also leaving nothing.
+  bool store_derived(const ParameterValues& values, const std::string& derived_from,
+                     const std::function<bool(const std::string& folder)>& fill);
+
 private:
   SolverRunSetup setup_;
   std::string setup_hash_;
