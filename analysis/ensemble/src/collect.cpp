@@ -30,6 +30,7 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
   std::vector<std::string> errors(n);
   std::vector<std::string> names;
   std::map<std::string, std::size_t> column;
+  PairHistoryCache histories;  // members sharing an entry read its per-pair CSVs once
   for (std::size_t k = 0; k < n; ++k) {
     const MemberStatus s = members.status(k);
     if (s.state != MemberState::done) {
@@ -38,7 +39,7 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
     }
     try {
       const std::optional<CaseFile> own = options.seismic_windows.empty() ? std::nullopt : members.forecast_case(k);
-      series[k] = member_outputs(members.folder(k), options, own ? &*own : nullptr);
+      series[k] = member_outputs(members.folder(k), options, own ? &*own : nullptr, &histories);
       metrics[k] = series[k].metrics;
     } catch (const InputError& e) {
       errors[k] = fmt::format("member {}: {}", k + 1, e.what());
@@ -49,10 +50,12 @@ CollectSummary collect(const EnsembleSpec& spec, const EnsembleMembers& members,
   // differ from the set most members share (ties: the earliest) is a failed member, never mixed in.
   std::vector<MemberPairs> pairs(n);
   std::vector<std::size_t> group(n, n), group_ref, group_size;  // group of member k; each group's first member, size
+  std::map<std::string, std::size_t> read_for;  // folder -> the member whose pairs were read from it
   for (std::size_t k = 0; k < n; ++k) {
     if (!metrics[k]) continue;
     try {
-      pairs[k] = read_member_pairs(members.folder(k));
+      const auto [it, fresh] = read_for.emplace(members.folder(k), k);
+      pairs[k] = fresh ? read_member_pairs(members.folder(k)) : pairs[it->second];
     } catch (const InputError& e) {
       errors[k] = fmt::format("member {}: {}", k + 1, e.what());
       metrics[k].reset();

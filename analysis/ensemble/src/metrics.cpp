@@ -20,6 +20,18 @@ namespace ugs::ensemble {
 
 namespace fs = std::filesystem;
 
+struct PairHistoryCache::Impl {
+  std::map<std::string, seismicity::StressHistory> by_folder;  // folder -> its histories (the files read)
+  const seismicity::StressHistory& get(const std::string& folder, const std::vector<std::string>& files) {
+    auto it = by_folder.find(folder);
+    if (it == by_folder.end()) it = by_folder.emplace(folder, seismicity::read_pair_csvs(files)).first;
+    return it->second;
+  }
+};
+
+PairHistoryCache::PairHistoryCache() : impl_(std::make_unique<Impl>()) {}
+PairHistoryCache::~PairHistoryCache() = default;
+
 Phase parse_phase(const std::string& text) {
   const auto eq = text.find('='), slash = text.find('/');
   if (eq == std::string::npos || eq == 0 || slash == std::string::npos || slash < eq)
@@ -181,7 +193,8 @@ void caprock_metrics(const std::string& folder, Metrics& out) {
 // The seismicity forecast of the member (docs/seismicity.md) over each window: its per-pair fault CSVs
 // (<stem>_fault_<F>.csv, in name order) with the [seismicity] parameters of the member's case: its
 // own case copy, or `forecast_case` when given.
-void seismicity_metrics(const std::string& folder, const std::vector<Phase>& windows, const CaseFile* forecast_case, Metrics& out) {
+void seismicity_metrics(const std::string& folder, const std::vector<Phase>& windows, const CaseFile* forecast_case,
+                        PairHistoryCache* cache, Metrics& out) {
   if (windows.empty()) return;
   std::vector<std::string> pairs;
   for (const auto& e : fs::directory_iterator(folder)) {
@@ -197,7 +210,9 @@ void seismicity_metrics(const std::string& folder, const std::vector<Phase>& win
   for (const auto& w : windows) s.windows.push_back(format_iso_date(w.start) + "/" + format_iso_date(w.end));
   std::optional<CaseFile> own;
   const CaseFile& c = forecast_case ? *forecast_case : own.emplace(read_case_file(s.case_file));
-  const seismicity::StressHistory h = seismicity::read_pair_csvs(pairs);
+  std::optional<seismicity::StressHistory> own_history;
+  const seismicity::StressHistory& h =
+      cache ? cache->impl().get(folder, pairs) : own_history.emplace(seismicity::read_pair_csvs(pairs));
   const seismicity::Forecast fc = seismicity::compute(s, c, h);
   const std::vector<double>& magnitudes = c.seismicity->magnitudes;
   for (std::size_t i = 0; i < windows.size(); ++i) {
@@ -221,9 +236,11 @@ void seismicity_metrics(const std::string& folder, const std::vector<Phase>& win
 
 }  // namespace
 
+
 Metrics member_metrics(const std::string& folder, const MetricOptions& options) { return member_outputs(folder, options).metrics; }
 
-MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options, const CaseFile* forecast_case) {
+MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options, const CaseFile* forecast_case,
+                             PairHistoryCache* cache) {
   MemberOutputs mo;
   Metrics& out = mo.metrics;
   const std::string h5 = (fs::path(folder) / "result.h5").string();
@@ -236,7 +253,7 @@ MemberOutputs member_outputs(const std::string& folder, const MetricOptions& opt
   fault_metrics(folder, out);
   scenario_metrics(folder, out);
   caprock_metrics(folder, out);
-  seismicity_metrics(folder, options.seismic_windows, forecast_case, out);
+  seismicity_metrics(folder, options.seismic_windows, forecast_case, cache, out);
   for (const auto& [name, v] : out)
     if (!std::isfinite(v)) throw InputError(folder, fmt::format("metric {} is not finite", name));
   return mo;
