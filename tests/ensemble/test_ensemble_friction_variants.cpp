@@ -6,7 +6,7 @@
 //    run, the other two are derived (entry.json names the source), and each derived member's fault
 //    tables equal those of a real run at its friction: every column but chi and the Coulomb change
 //    as text, those two to round-off, the fault table to its 6 decimals; --member K derives too, the
-//    same bytes again;
+//    same bytes again; the emitted Makefile under make -j 3 runs one solve and derives the others;
 //  - the fault slips at the lower frictions (dp 5 MPa, [20, 50] deg): no member is derived from a
 //    run with slip, and a member whose own chi would reach 1 runs its own solve (and slips there);
 //  - unit checks of the derivation on hand-written tables: a cohesive fault with interpolated pairs,
@@ -39,11 +39,11 @@ struct Box {
     return test::tool("ugs-solve") + " " + (dir.path / "faulted.msh").string() + " --pressure " + (dir.path / "flow.h5").string() +
            " --top none --state none --fault-output none --fault-pairs-every-step -q";
   }
-  std::string ensemble(const std::string& spec, const std::string& extra = "") const {
+  std::string ensemble(const std::string& spec, const std::string& extra = "", const std::string& out = "out") const {
     test::spit(dir.path / "spec.toml", spec);
     return test::tool("ugs-ensemble") + " run --spec " + (dir.path / "spec.toml").string() + " --case " +
            (dir.path / "case.toml").string() + " --solver-command '" + solve_args() + " --case {case} -o {out}' -j 2 --cache-dir " +
-           (dir.path / "cache").string() + " -o " + (dir.path / "out").string() + " " + extra;
+           (dir.path / "cache").string() + " -o " + (dir.path / out).string() + " " + extra;
   }
   std::vector<fs::path> entries() const {
     std::vector<fs::path> v;
@@ -167,6 +167,22 @@ TEST(EnsembleFrictionVariants, MembersOfARunThatSticksAreDerivedAndEqualRealRuns
     ASSERT_TRUE(fs::exists(e / "derived.txt"));
     EXPECT_EQ(test::slurp(e / "result_fault_F.csv"), before);
   }
+}
+
+TEST(EnsembleFrictionVariants, TheEmittedMakefileDerivesUnderMakeJ) {
+  // Its friction variants wait for their group's first member: make -j 3 runs one solve.
+  const Box box("friction-variants-make", 2.0);
+  const auto e = test::run(box.ensemble(lhs(35, 50), "--emit make", "members.mk"));
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  const auto mk = test::run("make -s -f " + (box.dir.path / "members.mk").string() + " -j 3 all");
+  ASSERT_EQ(mk.exit_code, 0) << mk.err;
+  int ran = 0, derived = 0;
+  for (const auto& entry : box.entries()) {
+    ran += fs::exists(entry / "solver.log") ? 1 : 0;
+    derived += fs::exists(entry / "derived.txt") ? 1 : 0;
+  }
+  EXPECT_EQ(ran, 1);
+  EXPECT_EQ(derived, 2);
 }
 
 TEST(EnsembleFrictionVariants, SlipMeansAMemberOfItsOwn) {

@@ -248,12 +248,18 @@ std::string makefile(const EnsembleMembers& m, const std::string& member_command
   std::string all = "all:";
   std::string rules;
   std::vector<std::string> seen;
+  std::map<std::string, std::string> group_first;  // friction group -> its first member's target
   for (std::size_t k = 0; k < m.size(); ++k) {
     const std::string target = make_escape(m.folder(k) + "/key.txt");
     if (std::find(seen.begin(), seen.end(), target) != seen.end()) continue;  // same values as an earlier member
     seen.push_back(target);
     all += " \\\n  " + target;
-    rules += fmt::format("{}:\n\t$(MEMBER) --member {}\n", target, k + 1);
+    std::string after;  // a friction variant waits for its group's run, to be derived from it
+    if (m.has_friction_variants()) {
+      const auto [it, fresh] = group_first.emplace(m.friction_group(k), target);
+      if (!fresh) after = " " + it->second;
+    }
+    rules += fmt::format("{}:{}\n\t$(MEMBER) --member {}\n", target, after, k + 1);
   }
   f += all + "\n\ncollect: all\n\t$(COLLECT)\n\n.PHONY: all collect\n\n" + rules;
   return f;

@@ -58,6 +58,10 @@ public:
   std::vector<MemberStatus> run(const std::vector<std::size_t>& which, int jobs,
                                 const std::function<void(std::size_t, const MemberStatus&)>& on_done);
   const runner::SolverRuns& runs() const { return *runs_; }
+  // Whether members may be derived from a run of another (friction angles among the parameters),
+  // and the group of member k: the members that differ only in friction and forecast-only values.
+  bool has_friction_variants() const { return any_friction_; }
+  std::string friction_group(std::size_t k) const { return stick_key(k); }
 
 private:
   // run() without friction variants: one solver run per entry, `jobs` at once.
@@ -78,7 +82,10 @@ private:
 
 // A Makefile (GNU make) and a Slurm job-array script whose jobs each run one member with
 // `member_command` + " --member K" (K 1-based) — the same code path as a local run, into the same
-// cache, so `ugs-ensemble collect` afterwards reads their results as its own.
+// cache, so `ugs-ensemble collect` afterwards reads their results as its own. In the Makefile a
+// member that may be derived (friction variants) waits for its group's first member, so that
+// `make -j` derives it instead of running it; the array jobs all start at once and each derives
+// only from a member already in the cache.
 std::string makefile(const EnsembleMembers& members, const std::string& member_command, const std::string& collect_command);
 std::string slurm_script(const EnsembleMembers& members, const std::string& member_command, const std::string& collect_command);
 
