@@ -18,9 +18,7 @@ namespace ugs::ensemble {
 namespace fs = std::filesystem;
 
 bool friction_only(const std::string& path) {
-  static const std::string head = "fault.", tail = ".friction_deg";
-  return path.size() > head.size() + tail.size() && path.compare(0, head.size(), head) == 0 &&
-         path.compare(path.size() - tail.size(), tail.size(), tail) == 0;
+  return path.size() > std::string_view("fault..friction_deg").size() && path.starts_with("fault.") && path.ends_with(".friction_deg");
 }
 
 namespace {
@@ -97,10 +95,6 @@ private:
   std::string line_;
 };
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // Per fault and date: the fault table's statistics over the frictional pairs (interpolated = 0).
 struct DateStats {
   std::size_t pairs = 0;
@@ -127,7 +121,7 @@ std::map<std::string, DateStats> rewrite_pairs(const std::string& in, const std:
   std::string first_date;
   std::vector<std::string_view> cells;
   while (r.next(cells)) {
-    const std::string date(cells[c_date]);
+    const std::string date(cells[c_date]), node(cells[c_node]);
     if (first_date.empty()) first_date = date;
     // A stuck pair's slip and opening are round-off (1e-16 mm): its state is what the solver decided.
     if (cells[c_state] != "stick")
@@ -139,9 +133,9 @@ std::map<std::string, DateStats> rewrite_pairs(const std::string& in, const std:
       if (cfs != 0)
         throw NotDerived{fmt::format("the per-pair CSV of fault {} starts on {}, not at the initial state (Coulomb change {} MPa)", f.name,
                                      date, cfs)};
-      sn0[std::string(cells[c_node])] = sn;
+      sn0[node] = sn;
     }
-    const auto s0 = sn0.find(std::string(cells[c_node]));
+    const auto s0 = sn0.find(node);
     if (s0 == sn0.end()) throw InputError(r.where(), fmt::format("node {} is not among the pairs of the first date", cells[c_node]));
     if (!(chi < 1)) throw NotDerived{fmt::format("fault {} has chi {} at node {} on {} in that run", f.name, chi, cells[c_node], date)};
     double chi_m;
@@ -151,7 +145,7 @@ std::map<std::string, DateStats> rewrite_pairs(const std::string& in, const std:
       if (interpolated)
         throw NotDerived{fmt::format("fault {} has cohesion and interpolated pairs (node {}), whose chi is a mean of their neighbours'",
                                      f.name, cells[c_node])};
-      const double tau_L = f.cohesion_MPa - sn * f.mu;
+      const double tau_L = f.cohesion_MPa - sn * f.mu;  // as contact::safety_factor (solver/contact/src/pair_law.cpp)
       chi_m = tau_L > 0 ? tau / tau_L : (tau > 0 ? 1.0 : 0.0);
     }
     cfs += (f.mu - f.mu_run) * (sn - s0->second);
@@ -203,11 +197,11 @@ FrictionVariant derive(const std::string& run_folder, const CaseFile& run, const
     if (!e.is_regular_file()) continue;
     const std::string n = e.path().filename().string();
     if (record.count(n)) continue;
-    if (ends_with(n, "_scenario.csv")) throw NotDerived{"a safe-scale search ran (its answer depends on the friction)"};
-    if (ends_with(n, "_faults.csv")) {
+    if (n.ends_with("_scenario.csv")) throw NotDerived{"a safe-scale search ran (its answer depends on the friction)"};
+    if (n.ends_with("_faults.csv")) {
       if (!table.empty()) throw InputError(run_folder, "has two fault tables (*_faults.csv): expected one");
       table = e.path().string();
-    } else if (n.find("_fault_") != std::string::npos && ends_with(n, ".csv")) {
+    } else if (n.find("_fault_") != std::string::npos && n.ends_with(".csv")) {
       pair_csvs.push_back(e.path().string());
     } else {
       others.push_back(e.path().string());
@@ -217,7 +211,7 @@ FrictionVariant derive(const std::string& run_folder, const CaseFile& run, const
   std::sort(pair_csvs.begin(), pair_csvs.end());
 
   // 1. Every pair of every fault sticks at every step (the fault table has a row per step and fault).
-  std::map<std::string, FaultChange> changed;  // fault -> its friction in the run and for the member
+  std::map<std::string, FaultChange> changed;  // fault -> its friction in the run and for the member (each fault once)
   {
     CsvLines r(table);
     const std::size_t c_fault = r.column("fault"), c_date = r.column("date"), c_slip = r.column("slipping"), c_open = r.column("open");
@@ -229,9 +223,9 @@ FrictionVariant derive(const std::string& run_folder, const CaseFile& run, const
       if (changed.count(name)) continue;
       const FaultSpec a = fault_of(run, name), b = fault_of(member, name);
       if (a.cohesion_Pa != b.cohesion_Pa) throw NotDerived{fmt::format("fault {} has another cohesion", name)};
-      if (a.friction_deg != b.friction_deg) changed[name] = {name, tan_deg(a.friction_deg), tan_deg(b.friction_deg), a.cohesion_Pa * 1e-6};
+      changed[name] = {name, tan_deg(a.friction_deg), tan_deg(b.friction_deg), a.cohesion_Pa * 1e-6};
     }
-    for (auto it = changed.begin(); it != changed.end();) it = it->second.mu == it->second.mu_run ? changed.erase(it) : std::next(it);
+    std::erase_if(changed, [](const auto& f) { return f.second.mu == f.second.mu_run; });  // the faults whose friction changes
   }
 
   // 2. The per-pair CSVs of the faults whose friction changes, rewritten; the others linked.

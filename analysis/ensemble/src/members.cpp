@@ -139,8 +139,8 @@ std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& w
     out[first[i]] = r1[i];
     if (r1[i].state == MemberState::done) source.try_emplace(stick_key(which[first[i]]), which[first[i]]);
   }
-  std::vector<std::size_t> again;  // positions of members that run after all
-  std::vector<std::string> why_run;
+  std::vector<std::size_t> again;          // positions of members that run after all
+  std::map<std::size_t, std::string> why;  // member -> why it was not derived
   for (std::size_t j : rest) {
     const std::size_t k = which[j];
     MemberStatus s = status(k);
@@ -151,18 +151,17 @@ std::vector<MemberStatus> EnsembleMembers::run(const std::vector<std::size_t>& w
       if (on_done) on_done(k, s);
     } else {
       again.push_back(j);
-      why_run.push_back(s.note);
+      why[k] = s.note;
     }
   }
   const auto r3 = run_entries(subset(again), jobs, [&](std::size_t k, const MemberStatus& st) {
     MemberStatus s = st;
-    for (std::size_t i = 0; i < again.size(); ++i)
-      if (which[again[i]] == k) s.note = why_run[i];
+    s.note = why.at(k);
     if (on_done) on_done(k, s);
   });
   for (std::size_t i = 0; i < again.size(); ++i) {
     out[again[i]] = r3[i];
-    out[again[i]].note = why_run[i];
+    out[again[i]].note = why.at(which[again[i]]);
   }
   return out;
 }

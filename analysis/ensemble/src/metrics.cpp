@@ -236,7 +236,6 @@ void seismicity_metrics(const std::string& folder, const std::vector<Phase>& win
 
 }  // namespace
 
-
 Metrics member_metrics(const std::string& folder, const MetricOptions& options) { return member_outputs(folder, options).metrics; }
 
 MemberOutputs member_outputs(const std::string& folder, const MetricOptions& options, const CaseFile* forecast_case,

@@ -50,6 +50,19 @@ std::string entry_json(const std::string& key, const ParameterValues& values, co
   return json + "\n}\n";
 }
 
+// Turns the finished folder `tmp` into the entry: key.txt written last (its presence marks a
+// complete entry), then the atomic rename; an earlier failure at these values is history. When
+// another process won the race its entry is as good, and the guard removes ours.
+void install_entry(const fs::path& tmp, const fs::path& entry, const std::string& failed, const std::string& key, RemoveAtExit& guard) {
+  write_text_file((tmp / "key.txt").string(), key);
+  std::error_code ec;
+  fs::remove_all(entry, ec);
+  fs::rename(tmp, entry, ec);
+  if (ec) return;
+  guard.release();
+  fs::remove_all(failed, ec);
+}
+
 std::string substitute(const std::string& tmpl, const std::map<std::string, std::string>& values) {
   std::string out;
   for (std::size_t i = 0; i < tmpl.size();) {
@@ -292,15 +305,7 @@ double SolverRuns::run(const ParameterValues& values, const std::string& label,
     fs::remove(out);
     fs::remove(fs::path(out).replace_extension(".xdmf"));
   }
-  write_text_file((tmp / "key.txt").string(), k);  // last: its presence marks a complete entry
-  std::error_code ec;
-  fs::remove_all(entry, ec);
-  fs::rename(tmp, entry, ec);
-  if (!ec) {
-    guard.release();
-    fs::remove_all(failed, ec);  // an earlier failure at these values is history
-  }
-  // else another process won the race: its entry is as good (the guard removes ours)
+  install_entry(tmp, entry, failed, k, guard);
   return r.seconds;
 }
 
@@ -317,11 +322,7 @@ bool SolverRuns::store_derived(const ParameterValues& values, const std::string&
   write_text_file((tmp / "case.toml").string(), setup_.case_template->render(values));
   write_text_file((tmp / "inputs.txt").string(), inputs_);
   write_text_file((tmp / "entry.json").string(), entry_json(k, values, setup_.command, derived_from));
-  write_text_file((tmp / "key.txt").string(), k);  // last: its presence marks a complete entry
-  std::error_code ec;
-  fs::remove_all(entry, ec);
-  fs::rename(tmp, entry, ec);
-  if (!ec) guard.release();
+  install_entry(tmp, entry, failed_path(name), k, guard);
   return true;
 }
 
